@@ -1,0 +1,143 @@
+#include "cli_common.hpp"
+
+#include <unistd.h>
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/text.hpp"
+
+namespace surfgrow::cli {
+
+namespace {
+
+std::string_view trim(std::string_view s) {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+    return s;
+}
+
+[[noreturn]] void usage_error(std::string_view option,
+                              std::initializer_list<std::string_view> what) {
+    std::string message = cat({option, ": "});
+    for (auto w : what) message.append(w);
+    throw Error(ErrorCode::kUsage, message);
+}
+
+// Splits "12.5mm" into the number and the unit text; false if there is no number.
+bool split_number(std::string_view text, double& value, std::string_view& unit) {
+    text = trim(text);
+    const char* end = text.data() + text.size();
+    auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc() || !std::isfinite(value)) return false;
+    unit = trim(std::string_view(ptr, static_cast<std::size_t>(end - ptr)));
+    return true;
+}
+
+constexpr std::array<std::pair<std::string_view, double>, 4> kLengthUnits{
+    {{"m", 1.0}, {"cm", 0.01}, {"mm", 0.001}, {"um", 1e-6}}};
+
+bool unit_scale(std::string_view unit, double& scale) {
+    for (const auto& [name, s] : kLengthUnits) {
+        if (unit == name) {
+            scale = s;
+            return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
+double parse_length_m(std::string_view text, std::string_view option) {
+    double value = 0;
+    std::string_view unit;
+    if (!split_number(text, value, unit))
+        usage_error(option, {"'", text, "' is not a length (expected e.g. 12mm or 0.012m)"});
+    if (unit.empty())
+        usage_error(option, {"'", text, "' has no unit; write e.g. ", trim(text), "mm or ",
+                             trim(text), "m"});
+    double scale = 1;
+    if (!unit_scale(unit, scale))
+        usage_error(option, {"unknown length unit '", unit, "' (use m, cm, mm)"});
+    return value * scale;
+}
+
+double unit_to_metres(std::string_view unit, std::string_view option) {
+    double scale = 1;
+    if (!unit_scale(trim(unit), scale))
+        usage_error(option, {"unknown unit '", unit, "' (use m, cm or mm)"});
+    return scale;
+}
+
+Vec3d parse_vec3(std::string_view text, std::string_view option) {
+    Vec3d v;
+    std::string_view rest = text;
+    for (int i = 0; i < 3; ++i) {
+        const auto comma = rest.find(',');
+        const std::string_view part = trim(i < 2 ? rest.substr(0, comma) : rest);
+        if ((i < 2 && comma == std::string_view::npos) || part.empty())
+            usage_error(option, {"'", text, "' is not x,y,z"});
+        double value = 0;
+        auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
+        if (ec != std::errc() || ptr != part.data() + part.size() || !std::isfinite(value))
+            usage_error(option, {"'", text, "' is not x,y,z (three numbers)"});
+        v[i] = value;
+        if (i < 2) rest.remove_prefix(comma + 1);
+    }
+    return v;
+}
+
+Vec3d parse_vec3_length_m(std::string_view text, std::string_view option) {
+    std::array<std::string_view, 3> parts;
+    std::string_view rest = text;
+    for (int i = 0; i < 3; ++i) {
+        const auto comma = rest.find(',');
+        if ((i < 2) == (comma == std::string_view::npos))
+            usage_error(option, {"'", text, "' is not x,y,z"});
+        parts[static_cast<std::size_t>(i)] = trim(i < 2 ? rest.substr(0, comma) : rest);
+        if (i < 2) rest.remove_prefix(comma + 1);
+    }
+    // A unit on the last component alone applies to all three ("1,2,0.5m").
+    double last_scale = 0;
+    {
+        double value = 0;
+        std::string_view unit;
+        if (split_number(parts[2], value, unit) && !unit.empty() && !unit_scale(unit, last_scale))
+            usage_error(option, {"unknown length unit '", unit, "' (use m, cm, mm)"});
+    }
+    Vec3d v;
+    for (int i = 0; i < 3; ++i) {
+        double value = 0;
+        std::string_view unit;
+        if (!split_number(parts[static_cast<std::size_t>(i)], value, unit))
+            usage_error(option, {"'", text, "' is not x,y,z with units (e.g. 0,0,1.2m)"});
+        double scale = last_scale;
+        if (!unit.empty() && !unit_scale(unit, scale))
+            usage_error(option, {"unknown length unit '", unit, "' (use m, cm, mm)"});
+        if (scale == 0) usage_error(option, {"'", text, "' has no unit; write e.g. 0,0,1.2m"});
+        v[i] = value * scale;
+    }
+    return v;
+}
+
+std::string format_length(double metres) {
+    char buf[64];
+    const double a = std::abs(metres);
+    if (a != 0 && a < 0.1)
+        std::snprintf(buf, sizeof buf, "%g mm", metres * 1000);
+    else
+        std::snprintf(buf, sizeof buf, "%g m", metres);
+    return buf;
+}
+
+bool stderr_is_terminal() {
+    return ::isatty(STDERR_FILENO) == 1;
+}
+
+}  // namespace surfgrow::cli

@@ -1,0 +1,32 @@
+// Parsing and formatting shared by the subcommands: lengths with units, vectors, progress.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "surfgrow/core/geometry.hpp"
+
+namespace surfgrow::cli {
+
+/// Parses a length with its unit ("12mm", "1.2 cm", "0.012m", "1e-2m") into metres.
+/// A bare number is refused: in a tool that mixes metre and millimetre clouds, a silent
+/// factor of 1000 is worse than a short error. Throws Error(kUsage) naming `option`.
+double parse_length_m(std::string_view text, std::string_view option);
+
+/// Metres per unit of a cloud: "m" -> 1, "cm" -> 0.01, "mm" -> 0.001. Throws Error(kUsage).
+double unit_to_metres(std::string_view unit, std::string_view option);
+
+/// Parses "x,y,z" (three numbers, in the cloud's units). Throws Error(kUsage) naming `option`.
+Vec3d parse_vec3(std::string_view text, std::string_view option);
+
+/// Parses "x,y,z" where each number may carry a length unit ("1m,2m,0.5m" or "1,2,0.5m"
+/// with the unit on the last); returns metres. A vector with no unit at all is refused.
+Vec3d parse_vec3_length_m(std::string_view text, std::string_view option);
+
+/// "12 mm", "1.5 m": a length in metres shown in the unit a person would use.
+std::string format_length(double metres);
+
+/// True when stderr is a terminal (progress is shown only then).
+bool stderr_is_terminal();
+
+}  // namespace surfgrow::cli

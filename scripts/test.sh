@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# The README's test command: installs what is missing, builds everything, runs every test.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh build test
+scripts/build.sh
+ctest --test-dir "${SURFGROW_BUILD_DIR:-build}" --output-on-failure -j "$(nproc)" --timeout 600

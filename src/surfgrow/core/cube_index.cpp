@@ -1,0 +1,186 @@
+#include "surfgrow/core/cube_index.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <string>
+
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/key_sort.hpp"
+#include "surfgrow/core/text.hpp"
+
+namespace surfgrow {
+
+namespace {
+
+// One part in 2^20: far below any physical meaning, far above float rounding (2^-24).
+constexpr double kCubeInflation = 1.0 + 1.0 / (1 << 20);
+
+bool included(std::span<const std::uint8_t> include, std::size_t i) {
+    return include.empty() || include[i] != 0;
+}
+
+}  // namespace
+
+CubeIndex::CubeIndex(std::span<const Vec3f> points, double cube_size,
+                     std::span<const std::uint8_t> include, int threads) {
+    if (!(cube_size > 0) || !std::isfinite(cube_size))
+        throw Error(ErrorCode::kInvalidParameter,
+                    cat({"cube size must be a positive length, got ", num(cube_size)}));
+    if (!include.empty() && include.size() != points.size())
+        throw Error(ErrorCode::kInternal, "cube index: include mask size differs from point count");
+    if (points.size() >= (std::size_t{1} << 31))
+        throw Error(ErrorCode::kCloudTooLarge, "more than 2^31 points; split the cloud");
+    threads = std::max(1, threads);
+    cube_size_ = cube_size * kCubeInflation;
+    inv_cube_ = 1.0 / cube_size_;
+
+    // Bounds of the indexed points (double: the extent decides the key layout).
+    const std::size_t n_in = points.size();
+    Aabb box;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < n_in; ++i) {
+        if (!included(include, i) || !is_finite(points[i])) continue;
+        box.add(points[i].cast<double>());
+        ++count;
+    }
+    if (count == 0) {
+        x_.assign(kPadding, 0.f);
+        y_.assign(kPadding, 0.f);
+        z_.assign(kPadding, 0.f);
+        cube_start_.assign(1, 0);
+        return;
+    }
+    // One empty cube below the data keeps every neighbour coordinate >= 0.
+    origin_ = box.min - Vec3d::Constant(cube_size_);
+    const Vec3d span = (box.max - origin_) * inv_cube_;
+    for (int a = 0; a < 3; ++a) {
+        // Highest coordinate is floor(span)+1 for the neighbour above; add 1 more for safety.
+        const double top = std::floor(span[a]) + 2;
+        if (!(top < 2147483647.0))
+            throw Error(ErrorCode::kCloudTooLarge,
+                        cat({"the cloud spans ", num(box.size()[a]), " units along ",
+                             std::string(1, "xyz"[a]), ", more than 2^31 cubes of ", num(cube_size),
+                             "; crop the workspace or look for outlier points"}));
+        bits_[a] = std::max(1, static_cast<int>(std::bit_width(static_cast<std::uint64_t>(top))));
+    }
+    if (bits_.sum() > 63)
+        throw Error(ErrorCode::kCloudTooLarge,
+                    cat({"the cloud's extent (", num(box.size().x()), " x ", num(box.size().y()),
+                         " x ", num(box.size().z()), ") needs more cubes of ", num(cube_size),
+                         " than a 63-bit key can address; crop the workspace or use a larger mu"}));
+    shift_y_ = bits_.z();
+    shift_x_ = bits_.z() + bits_.y();
+
+    // Keys and input indices of the included finite points, in input order.
+    std::vector<std::uint64_t> keys;
+    std::vector<std::uint32_t> index;
+    keys.reserve(count);
+    index.reserve(count);
+    for (std::size_t i = 0; i < n_in; ++i) {
+        if (!included(include, i) || !is_finite(points[i])) continue;
+        const Vec3d local = points[i].cast<double>() - origin_;
+        const Eigen::Vector3i c((local * inv_cube_).array().floor().cast<int>());
+        keys.push_back(encode(c));
+        index.push_back(static_cast<std::uint32_t>(i));
+    }
+    radix_sort_pairs(keys, index, bits_.sum(), threads);
+
+    // Gather coordinates in sorted order; find cube boundaries.
+    const std::size_t n = count;
+    x_.resize(n + kPadding, 0.f);
+    y_.resize(n + kPadding, 0.f);
+    z_.resize(n + kPadding, 0.f);
+#pragma omp parallel for num_threads(threads) schedule(static) if (n > (1u << 16))
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec3d local = points[index[i]].cast<double>() - origin_;
+        x_[i] = static_cast<float>(local.x());
+        y_[i] = static_cast<float>(local.y());
+        z_[i] = static_cast<float>(local.z());
+    }
+    cube_keys_.clear();
+    cube_start_.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i == 0 || keys[i] != keys[i - 1]) {
+            cube_keys_.push_back(keys[i]);
+            cube_start_.push_back(static_cast<std::uint32_t>(i));
+        }
+    }
+    cube_start_.push_back(static_cast<std::uint32_t>(n));
+    cube_keys_.shrink_to_fit();
+    cube_start_.shrink_to_fit();
+    original_ = std::move(index);
+}
+
+std::uint32_t CubeIndex::cube_of(std::uint32_t i) const {
+    const auto it = std::upper_bound(cube_start_.begin(), cube_start_.end() - 1, i);
+    return static_cast<std::uint32_t>(it - cube_start_.begin() - 1);
+}
+
+Eigen::Vector3i CubeIndex::coords_of(const Vec3f& local) const {
+    Eigen::Vector3i c;
+    for (int a = 0; a < 3; ++a) {
+        const double v = std::floor(static_cast<double>(local[a]) * inv_cube_);
+        c[a] = static_cast<int>(std::clamp(v, -1073741824.0, 1073741824.0));
+    }
+    return c;
+}
+
+void CubeIndex::column_ranges(const Eigen::Vector3i& coords, int reach,
+                              std::vector<Range>& out) const {
+    if (cube_keys_.empty() || reach < 0) return;
+    const auto zmax = static_cast<int>((std::int64_t{1} << bits_.z()) - 1);
+    const int zlo = std::max(0, coords.z() - reach), zhi = std::min(zmax, coords.z() + reach);
+    if (zlo > zhi) return;
+    for (int dx = -reach; dx <= reach; ++dx) {
+        for (int dy = -reach; dy <= reach; ++dy) {
+            const Eigen::Vector3i lo(coords.x() + dx, coords.y() + dy, zlo);
+            if (!in_key_space(lo)) continue;
+            const Eigen::Vector3i hi(lo.x(), lo.y(), zhi);
+            const auto first = std::lower_bound(cube_keys_.begin(), cube_keys_.end(), encode(lo));
+            const auto last = std::upper_bound(first, cube_keys_.end(), encode(hi));
+            if (first == last) continue;
+            out.push_back({cube_start_[static_cast<std::size_t>(first - cube_keys_.begin())],
+                           cube_start_[static_cast<std::size_t>(last - cube_keys_.begin())]});
+        }
+    }
+}
+
+void CubeIndex::neighbour_table(std::size_t cube_begin, std::size_t cube_end,
+                                std::vector<Range>& out) const {
+    const std::size_t m = cube_end - cube_begin;
+    out.assign(9 * m, Range{});
+    if (m == 0) return;
+    const std::size_t nc = cube_keys_.size();
+    int k = 0;
+    for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -1; dy <= 1; ++dy, ++k) {
+            // key(x+dx, y+dy, z-1) = key + delta - 1: no borrow or carry crosses a field because
+            // every occupied coordinate is >= 1 and <= 2^bits - 2.
+            const auto delta = static_cast<std::int64_t>((std::int64_t{dx} << shift_x_) +
+                                                         (std::int64_t{dy} << shift_y_));
+            auto lo_key = [&](std::size_t c) {
+                return std::uint64_t(std::int64_t(cube_keys_[c]) + delta - 1);
+            };
+            auto hi_key = [&](std::size_t c) {
+                return std::uint64_t(std::int64_t(cube_keys_[c]) + delta + 1);
+            };
+            std::size_t a = static_cast<std::size_t>(
+                std::lower_bound(cube_keys_.begin(), cube_keys_.end(), lo_key(cube_begin)) -
+                cube_keys_.begin());
+            std::size_t b = a;
+            for (std::size_t c = cube_begin; c < cube_end; ++c) {
+                const std::uint64_t lo = lo_key(c), hi = hi_key(c);
+                while (a < nc && cube_keys_[a] < lo) ++a;
+                if (b < a) b = a;
+                while (b < nc && cube_keys_[b] <= hi) ++b;
+                out[9 * (c - cube_begin) + static_cast<std::size_t>(k)] = {cube_start_[a],
+                                                                           cube_start_[b]};
+            }
+        }
+    }
+}
+
+}  // namespace surfgrow

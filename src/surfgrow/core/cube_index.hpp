@@ -1,0 +1,129 @@
+// The cube index of paper section 4.1: space cut into cubes of side mu, points filed by cube.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "surfgrow/core/geometry.hpp"
+
+namespace surfgrow {
+
+/// Points sorted by cube, in structure-of-arrays form, with the cubes' keys and point ranges.
+///
+/// Built in O(N) by a radix sort of packed cube keys; memory is O(N) whatever the cloud's extent
+/// (only occupied cubes exist). Cube coordinates are packed into one 64-bit key with x in the
+/// high bits and z in the low bits, so the 3 cubes of a z-column are adjacent in key order and
+/// the 27 cubes around a cube are 9 contiguous runs of the sorted points.
+///
+/// Coordinates are stored as float relative to origin(), the low corner of the indexed points'
+/// bounding box less one cube. The cube side is the requested size enlarged by one part in 2^20,
+/// so that no float rounding can put two points within the requested size more than one cube
+/// apart: a radius query never misses a point.
+class CubeIndex {
+  public:
+    /// A run [begin, end) of sorted point positions.
+    struct Range {
+        std::uint32_t begin = 0;
+        std::uint32_t end = 0;
+    };
+    /// Readable floats past size() in each coordinate array, so SIMD loops may overrun a range.
+    static constexpr std::size_t kPadding = 64;
+
+    CubeIndex() = default;
+
+    /// Indexes every finite point `points[i]` for which `include` is empty or include[i] != 0.
+    /// Throws Error(kInvalidParameter) for a bad cube size, Error(kCloudTooLarge) when the
+    /// extent would need more than 63 key bits or there are 2^31 points or more.
+    CubeIndex(std::span<const Vec3f> points, double cube_size,
+              std::span<const std::uint8_t> include = {}, int threads = 1);
+
+    [[nodiscard]] double cube_size() const { return cube_size_; }
+    [[nodiscard]] std::size_t size() const { return original_.size(); }
+    [[nodiscard]] std::size_t cube_count() const { return cube_keys_.size(); }
+    [[nodiscard]] const Vec3d& origin() const { return origin_; }
+
+    /// Sorted local coordinates (world minus origin()); each array has kPadding readable extras.
+    [[nodiscard]] const float* xs() const { return x_.data(); }
+    [[nodiscard]] const float* ys() const { return y_.data(); }
+    [[nodiscard]] const float* zs() const { return z_.data(); }
+    [[nodiscard]] Vec3f local_point(std::uint32_t i) const { return {x_[i], y_[i], z_[i]}; }
+    [[nodiscard]] Vec3d world_point(std::uint32_t i) const {
+        return origin_ + local_point(i).cast<double>();
+    }
+    /// Input index of the point at sorted position i.
+    [[nodiscard]] std::span<const std::uint32_t> original_indices() const { return original_; }
+
+    /// Cube c's key and its points [cube_begin(c), cube_end(c)).
+    [[nodiscard]] std::uint64_t cube_key(std::size_t c) const { return cube_keys_[c]; }
+    [[nodiscard]] std::uint32_t cube_begin(std::size_t c) const { return cube_start_[c]; }
+    [[nodiscard]] std::uint32_t cube_end(std::size_t c) const { return cube_start_[c + 1]; }
+    [[nodiscard]] Eigen::Vector3i cube_coords(std::size_t c) const { return decode(cube_keys_[c]); }
+    /// The cube holding sorted point i (binary search).
+    [[nodiscard]] std::uint32_t cube_of(std::uint32_t i) const;
+    /// The cube coordinates a local position falls in (may be outside the occupied cubes).
+    [[nodiscard]] Eigen::Vector3i coords_of(const Vec3f& local) const;
+
+    /// Appends the (2*reach+1)^2 z-column runs covering every cube within `reach` cubes (in x, y
+    /// and z) of the cube at `coords`. Empty runs are omitted. Binary search per column.
+    void column_ranges(const Eigen::Vector3i& coords, int reach, std::vector<Range>& out) const;
+
+    /// The 9 runs around each cube in [cube_begin, cube_end), in one linear sweep:
+    /// out[9 * (c - cube_begin) + k]. Faster than column_ranges() when most cubes are visited.
+    void neighbour_table(std::size_t cube_begin, std::size_t cube_end,
+                         std::vector<Range>& out) const;
+
+    /// Calls f(sorted_index) for every indexed point within `radius` (world units, any size) of
+    /// the world position q, in sorted order.
+    template <class F>
+    void for_each_within(const Vec3d& q, double radius, F&& f) const;
+
+    /// Number of key bits per axis (x, y, z), for tests and diagnostics.
+    [[nodiscard]] Eigen::Vector3i key_bits() const { return bits_; }
+
+  private:
+    [[nodiscard]] std::uint64_t encode(const Eigen::Vector3i& c) const {
+        return (std::uint64_t(std::uint32_t(c.x())) << shift_x_) |
+               (std::uint64_t(std::uint32_t(c.y())) << shift_y_) |
+               std::uint64_t(std::uint32_t(c.z()));
+    }
+    [[nodiscard]] Eigen::Vector3i decode(std::uint64_t key) const {
+        const std::uint64_t my = (std::uint64_t{1} << bits_.y()) - 1;
+        const std::uint64_t mz = (std::uint64_t{1} << bits_.z()) - 1;
+        return {int(key >> shift_x_), int((key >> shift_y_) & my), int(key & mz)};
+    }
+    [[nodiscard]] bool in_key_space(const Eigen::Vector3i& c) const {
+        return (c.array() >= 0).all() && c.x() < (std::int64_t{1} << bits_.x()) &&
+               c.y() < (std::int64_t{1} << bits_.y()) && c.z() < (std::int64_t{1} << bits_.z());
+    }
+
+    double cube_size_ = 0.0;
+    double inv_cube_ = 0.0;
+    Vec3d origin_ = Vec3d::Zero();
+    Eigen::Vector3i bits_ = Eigen::Vector3i::Zero();
+    int shift_x_ = 0;
+    int shift_y_ = 0;
+    std::vector<float> x_, y_, z_;
+    std::vector<std::uint32_t> original_;
+    std::vector<std::uint64_t> cube_keys_;
+    std::vector<std::uint32_t> cube_start_;  // cube_count() + 1 entries
+};
+
+template <class F>
+void CubeIndex::for_each_within(const Vec3d& q, double radius, F&& f) const {
+    if (size() == 0 || !(radius >= 0)) return;
+    const Vec3f ql = (q - origin_).cast<float>();
+    const int reach = static_cast<int>(std::ceil(radius * inv_cube_));
+    std::vector<Range> runs;
+    column_ranges(coords_of(ql), reach, runs);
+    const auto r2 = static_cast<float>(radius * radius);
+    for (const Range& r : runs) {
+        for (std::uint32_t i = r.begin; i < r.end; ++i) {
+            const float dx = x_[i] - ql.x(), dy = y_[i] - ql.y(), dz = z_[i] - ql.z();
+            if (dx * dx + dy * dy + dz * dz <= r2) f(i);
+        }
+    }
+}
+
+}  // namespace surfgrow

@@ -1,0 +1,74 @@
+// What surface growing returns: surfaces, a label per input point, and the statistics.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "surfgrow/core/geometry.hpp"
+#include "surfgrow/core/surface.hpp"
+
+namespace surfgrow {
+
+/// Points and registered points in one band of distance from the sensor.
+struct RangeBand {
+    double from = 0.0;
+    double to = 0.0;
+    std::uint64_t points = 0;
+    std::uint64_t registered = 0;
+};
+
+/// Wall-clock seconds per stage (not part of the deterministic output).
+struct StageTimes {
+    double index = 0.0;   ///< cube index build
+    double grow = 0.0;    ///< home points, PCA, registration
+    double attach = 0.0;  ///< leftover pass
+    double finish = 0.0;  ///< member statistics, orientation
+    [[nodiscard]] double total() const { return index + grow + attach + finish; }
+};
+
+/// How a normal's side was chosen.
+enum class OrientationSource {
+    kScanOrigins,  ///< each point's own scan origin (fused clouds)
+    kViewpoint,    ///< one viewpoint: given, or from the file (PCD VIEWPOINT)
+    kFrameOrigin,  ///< none given; the cloud's frame origin lies among the points (sensor frame)
+    kUp,           ///< none given and the origin is far away (georeferenced): normals face +z
+};
+
+struct GrowStats {
+    std::uint64_t points_in = 0;       ///< points in the cloud
+    std::uint64_t invalid_points = 0;  ///< NaN or Inf coordinates: skipped
+    std::uint64_t cropped_points = 0;  ///< outside the workspace crop: skipped
+    std::uint64_t valid_points = 0;    ///< points grown (finite and inside the crop)
+    std::uint64_t surfaces = 0;
+    std::uint64_t registered_grown = 0;    ///< registered by growing alone (the paper's figure)
+    std::uint64_t registered = 0;          ///< after the leftover pass
+    std::uint64_t homes_tried = 0;         ///< home points given a neighbourhood search
+    std::uint64_t rejected_sparse = 0;     ///< homes with fewer than min_pts neighbours (noise)
+    std::uint64_t rejected_nonplanar = 0;  ///< homes whose neighbourhood failed the plane test
+    std::uint64_t adapted_surfaces = 0;    ///< surfaces grown with a radius above mu
+    std::uint64_t noise_points = 0;        ///< valid points left unregistered
+    OrientationSource orientation = OrientationSource::kUp;
+    bool range_known = false;            ///< whether range bands could be measured
+    Vec3d range_origin = Vec3d::Zero();  ///< where ranges are measured from (single origin)
+    std::vector<RangeBand> range_bands;
+    StageTimes seconds;
+
+    [[nodiscard]] double registered_fraction() const {
+        return valid_points ? double(registered) / double(valid_points) : 0.0;
+    }
+    [[nodiscard]] double registered_grown_fraction() const {
+        return valid_points ? double(registered_grown) / double(valid_points) : 0.0;
+    }
+    /// Points per surface: the paper's data reduction (100 000 points -> 2 000 surfaces = 50x).
+    [[nodiscard]] double data_reduction() const {
+        return surfaces ? double(valid_points) / double(surfaces) : 0.0;
+    }
+};
+
+struct GrowResult {
+    std::vector<Surface> surfaces;     ///< ordered by the home point's cube (spatially coherent)
+    std::vector<std::int32_t> labels;  ///< per input point: its surface, or -1
+    GrowStats stats;
+};
+
+}  // namespace surfgrow

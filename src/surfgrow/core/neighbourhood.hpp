@@ -1,0 +1,99 @@
+// The two inner loops of surface growing, over runs of the cube index, in SIMD.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+#include <experimental/simd>
+#include <span>
+
+#include "surfgrow/core/cube_index.hpp"
+#include "surfgrow/core/plane_fit.hpp"
+
+namespace surfgrow {
+
+namespace simd = std::experimental;
+using FloatV = simd::native_simd<float>;
+static_assert(FloatV::size() <= CubeIndex::kPadding,
+              "cube index padding must cover one SIMD vector");
+
+/// Moments (relative to `home`, local coordinates) of the points of `runs` within `radius` of home.
+/// Whole vectors are loaded and the lanes past a run's end masked off (the index is padded).
+[[nodiscard]] inline Moments gather_moments(const CubeIndex& index,
+                                            std::span<const CubeIndex::Range> runs,
+                                            const Vec3f& home, float radius) {
+    constexpr int W = static_cast<int>(FloatV::size());
+    const FloatV lane([](int l) { return static_cast<float>(l); });
+    const FloatV hx = home.x(), hy = home.y(), hz = home.z(), r2 = radius * radius;
+    FloatV n = 0, sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+    const float* X = index.xs();
+    const float* Y = index.ys();
+    const float* Z = index.zs();
+    for (const CubeIndex::Range& run : runs) {
+        for (std::uint32_t i = run.begin; i < run.end; i += W) {
+            const FloatV dx = FloatV(X + i, simd::element_aligned) - hx;
+            const FloatV dy = FloatV(Y + i, simd::element_aligned) - hy;
+            const FloatV dz = FloatV(Z + i, simd::element_aligned) - hz;
+            const auto m =
+                (dx * dx + dy * dy + dz * dz <= r2) && (lane < static_cast<float>(run.end - i));
+            simd::where(m, n) += 1.f;
+            simd::where(m, sx) += dx;
+            simd::where(m, sy) += dy;
+            simd::where(m, sz) += dz;
+            simd::where(m, sxx) += dx * dx;
+            simd::where(m, sxy) += dx * dy;
+            simd::where(m, sxz) += dx * dz;
+            simd::where(m, syy) += dy * dy;
+            simd::where(m, syz) += dy * dz;
+            simd::where(m, szz) += dz * dz;
+        }
+    }
+    Moments mo;
+    auto sum = [](const FloatV& v) { return static_cast<double>(simd::reduce(v)); };
+    mo.n = sum(n);
+    mo.sum = {sum(sx), sum(sy), sum(sz)};
+    mo.sum_sq << sum(sxx), sum(sxy), sum(sxz), sum(sxy), sum(syy), sum(syz), sum(sxz), sum(syz),
+        sum(szz);
+    return mo;
+}
+
+/// Sets labels[i] = label for every still unregistered point (labels[i] < 0) of `runs` within
+/// `radius` of `home` and within `tolerance` of the plane through home + `centroid` with unit
+/// `normal` (local coordinates, relative to home). Returns how many points it registered.
+inline std::uint32_t register_points(const CubeIndex& index, std::span<const CubeIndex::Range> runs,
+                                     const Vec3f& home, float radius, const Vec3f& normal,
+                                     const Vec3f& centroid, float tolerance,
+                                     std::span<std::int32_t> labels, std::int32_t label) {
+    constexpr int W = static_cast<int>(FloatV::size());
+    const FloatV lane([](int l) { return static_cast<float>(l); });
+    const FloatV hx = home.x(), hy = home.y(), hz = home.z(), r2 = radius * radius;
+    const FloatV nx = normal.x(), ny = normal.y(), nz = normal.z();
+    const FloatV off = normal.dot(centroid), tol = tolerance;
+    const float* X = index.xs();
+    const float* Y = index.ys();
+    const float* Z = index.zs();
+    std::uint32_t registered = 0;
+    for (const CubeIndex::Range& run : runs) {
+        for (std::uint32_t i = run.begin; i < run.end; i += W) {
+            const FloatV dx = FloatV(X + i, simd::element_aligned) - hx;
+            const FloatV dy = FloatV(Y + i, simd::element_aligned) - hy;
+            const FloatV dz = FloatV(Z + i, simd::element_aligned) - hz;
+            const FloatV dist = simd::abs(dx * nx + dy * ny + dz * nz - off);
+            const auto m = (dx * dx + dy * dy + dz * dz <= r2) && (dist <= tol) &&
+                           (lane < static_cast<float>(run.end - i));
+            if (simd::none_of(m)) continue;
+            std::uint32_t bits = 0;
+            for (int l = 0; l < W; ++l) bits |= static_cast<std::uint32_t>(m[l]) << l;
+            while (bits) {
+                const std::uint32_t j = i + static_cast<std::uint32_t>(std::countr_zero(bits));
+                bits &= bits - 1;
+                if (labels[j] < 0) {
+                    labels[j] = label;
+                    ++registered;
+                }
+            }
+        }
+    }
+    return registered;
+}
+
+}  // namespace surfgrow

@@ -1,0 +1,440 @@
+#include "surfgrow/core/surface_grower.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <initializer_list>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <string_view>
+
+#include "surfgrow/core/cube_index.hpp"
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/neighbourhood.hpp"
+#include "surfgrow/core/random.hpp"
+#include "surfgrow/core/text.hpp"
+
+namespace surfgrow {
+
+void validate(const GrowerConfig& c) {
+    auto fail = [](std::initializer_list<std::string_view> what) {
+        throw Error(ErrorCode::kInvalidParameter, cat(what));
+    };
+    if (!(c.mu > 0) || !std::isfinite(c.mu))
+        fail({"mu must be a positive length, got ", num(c.mu)});
+    if (c.min_pts < 3)
+        fail({"min-pts must be at least 3 (a plane needs 3 points), got ", num(c.min_pts)});
+    if (!(c.alpha > 1) || !std::isfinite(c.alpha))
+        fail({"alpha must be greater than 1 (eq. 2: min(lambda) < mid(lambda) / alpha), got ",
+              num(c.alpha)});
+    if (!(c.plane_tolerance >= 0) || !std::isfinite(c.plane_tolerance))
+        fail({"plane tolerance must be a length >= 0 (0 means mu), got ", num(c.plane_tolerance)});
+    if (!(c.mu_max >= 0) || !std::isfinite(c.mu_max) || (c.mu_max > 0 && c.mu_max < c.mu))
+        fail({"mu-max must be 0 (off) or at least mu, got ", num(c.mu_max)});
+    if (c.mu_max > 64 * c.mu)
+        fail({"mu-max may be at most 64 mu, got ", num(c.mu_max / c.mu), " mu"});
+    if (c.threads < 0) fail({"threads must be >= 0 (0 = all cores), got ", num(c.threads)});
+    if (!(c.range_band > 0) || !std::isfinite(c.range_band))
+        fail({"range band must be a positive length, got ", num(c.range_band)});
+    if (c.crop.radius && (!(*c.crop.radius > 0) || !std::isfinite(*c.crop.radius)))
+        fail({"crop radius must be a positive length, got ", num(*c.crop.radius)});
+    if (c.crop.box &&
+        (c.crop.box->empty() || !c.crop.box->min.allFinite() || !c.crop.box->max.allFinite()))
+        fail({"crop box must have finite corners with min <= max on every axis"});
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr std::size_t kMaxRangeBands = 1024;
+using Range = CubeIndex::Range;
+
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// A slab: all cubes whose x coordinate lies in one interval; a contiguous run of cubes.
+struct Slab {
+    std::uint32_t cube_begin = 0;
+    std::uint32_t cube_end = 0;
+};
+
+/// Cuts the index into slabs along x. Every slab but the first and the last spans at least
+/// `min_width` cube columns, so same-colour slabs (every other one) are more than 2*reach apart.
+/// Depends only on the data and the parameters, never on the thread count.
+std::vector<Slab> partition_slabs(const CubeIndex& index, int min_width,
+                                  std::size_t target_points) {
+    std::vector<Slab> slabs;
+    const std::size_t nc = index.cube_count();
+    if (nc == 0) return slabs;
+    int x0 = index.cube_coords(0).x();
+    std::uint32_t start = 0;
+    for (std::size_t c = 1; c < nc; ++c) {
+        const int x = index.cube_coords(c).x();
+        if (x == index.cube_coords(c - 1).x()) continue;
+        const std::size_t points = index.cube_begin(c) - index.cube_begin(start);
+        if (x - x0 >= min_width && points >= target_points) {
+            slabs.push_back({start, static_cast<std::uint32_t>(c)});
+            start = static_cast<std::uint32_t>(c);
+            x0 = x;
+        }
+    }
+    slabs.push_back({start, static_cast<std::uint32_t>(nc)});
+    return slabs;
+}
+
+/// A surface as it is grown, before statistics: home (sorted index), radius, fit.
+struct GrownSurface {
+    std::uint32_t home = 0;
+    float radius = 0;
+    std::uint32_t neighbours = 0;
+    PlaneFit fit;  // centroid relative to the home point, local frame
+};
+
+struct SlabCounters {
+    std::uint64_t tried = 0, sparse = 0, nonplanar = 0, adapted = 0;
+};
+
+/// Per-thread scratch reused across slabs: no allocation per home point.
+struct Scratch {
+    std::vector<std::uint32_t> order;
+    std::vector<Range> table;
+    std::vector<Range> runs;
+};
+
+struct GrowContext {
+    const CubeIndex& index;
+    const GrowerConfig& config;
+    std::span<std::int32_t> labels;  // sorted order; during growing: the home's sorted index
+};
+
+/// Grows every home point of one slab, in a random order drawn from the slab's own stream.
+void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Scratch& s,
+               std::vector<GrownSurface>& out, SlabCounters& counters) {
+    const CubeIndex& index = ctx.index;
+    const GrowerConfig& cfg = ctx.config;
+    const std::uint32_t p_begin = index.cube_begin(slab.cube_begin);
+    const std::uint32_t p_end = index.cube_begin(slab.cube_end);
+    s.order.resize(p_end - p_begin);
+    std::iota(s.order.begin(), s.order.end(), p_begin);
+    SplitMix64 rng(mix_seed(cfg.seed, slab_id));
+    shuffle(std::span<std::uint32_t>(s.order), rng);
+    index.neighbour_table(slab.cube_begin, slab.cube_end, s.table);
+
+    const auto mu = static_cast<float>(cfg.mu);
+    const double max_radius = cfg.max_radius();
+    const double tol_per_radius = cfg.tolerance() / cfg.mu;
+    for (const std::uint32_t home : s.order) {
+        if (ctx.labels[home] >= 0) continue;
+        ++counters.tried;
+        const Vec3f h = index.local_point(home);
+        const std::uint32_t cube = index.cube_of(home);
+        std::span<const Range> runs(&s.table[9 * (cube - slab.cube_begin)], 9);
+        double radius = cfg.mu;
+        Moments m = gather_moments(index, runs, h, mu);
+        // Adaptive radius: double it while the support is too thin, up to mu_max.
+        while (m.n < cfg.min_pts && radius < max_radius) {
+            radius = std::min(2.0 * radius, max_radius);
+            s.runs.clear();
+            index.column_ranges(index.cube_coords(cube),
+                                static_cast<int>(std::ceil(radius / index.cube_size())), s.runs);
+            runs = s.runs;
+            m = gather_moments(index, runs, h, static_cast<float>(radius));
+        }
+        if (m.n < cfg.min_pts) {
+            ++counters.sparse;
+            continue;
+        }
+        const PlaneFit fit = fit_plane(m);
+        if (!is_planar(fit.eigenvalues, cfg.alpha)) {
+            ++counters.nonplanar;
+            continue;
+        }
+        const auto tol = static_cast<float>(tol_per_radius * radius);
+        const std::uint32_t registered = register_points(
+            index, runs, h, static_cast<float>(radius), fit.normal.cast<float>(),
+            fit.centroid.cast<float>(), tol, ctx.labels, static_cast<std::int32_t>(home));
+        if (registered == 0) {  // possible only with a tolerance below the radius
+            ++counters.nonplanar;
+            continue;
+        }
+        if (radius > cfg.mu) ++counters.adapted;
+        out.push_back({home, static_cast<float>(radius), static_cast<std::uint32_t>(m.n), fit});
+    }
+}
+
+/// Runs f(slab_id, thread_id) over the slabs of one colour (0: even, 1: odd) in parallel.
+template <class F>
+void for_each_slab_of_colour(std::size_t slab_count, int colour, int threads, F&& f) {
+    const auto count =
+        static_cast<std::int64_t>((slab_count + 1 - static_cast<std::size_t>(colour)) / 2);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+    for (std::int64_t k = 0; k < count; ++k) {
+        f(static_cast<std::size_t>(2 * k + colour), omp_get_thread_num());
+    }
+}
+
+/// Leftover pass: for each unregistered point, the neighbouring surface whose plane it fits best.
+/// Reads only labels fixed by growing and writes to `attach`, so slabs can run in any order.
+void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& slab,
+                 std::span<const std::int32_t> labels, const std::vector<Surface>& surfaces,
+                 std::span<const double> tolerance, Scratch& s,
+                 std::vector<std::pair<std::uint32_t, std::int32_t>>& attach) {
+    index.neighbour_table(slab.cube_begin, slab.cube_end, s.table);
+    const auto r2 = static_cast<float>(cfg.mu * cfg.mu);
+    const double far_radius = cfg.max_radius();
+    const float* X = index.xs();
+    const float* Y = index.ys();
+    const float* Z = index.zs();
+    for (std::uint32_t c = slab.cube_begin; c < slab.cube_end; ++c) {
+        for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
+            if (labels[i] >= 0) continue;
+            const Vec3f p = index.local_point(i);
+            const Vec3d pw = index.origin() + p.cast<double>();
+            std::int32_t best = -1;
+            double best_dist = 0;
+            bool any_neighbour = false;
+            auto consider = [&](std::int32_t sid) {
+                any_neighbour = true;
+                const Surface& surf = surfaces[static_cast<std::size_t>(sid)];
+                const double d = std::abs(surf.normal.dot(pw - surf.centroid));
+                if (d <= tolerance[static_cast<std::size_t>(sid)] && (best < 0 || d < best_dist)) {
+                    best = sid;
+                    best_dist = d;
+                }
+            };
+            for (int k = 0; k < 9; ++k) {
+                const Range& run = s.table[9 * (c - slab.cube_begin) + static_cast<std::size_t>(k)];
+                for (std::uint32_t j = run.begin; j < run.end; ++j) {
+                    if (labels[j] < 0) continue;
+                    const float dx = X[j] - p.x(), dy = Y[j] - p.y(), dz = Z[j] - p.z();
+                    if (dx * dx + dy * dy + dz * dz <= r2) consider(labels[j]);
+                }
+            }
+            if (!any_neighbour && far_radius > cfg.mu) {
+                index.for_each_within(pw, far_radius, [&](std::uint32_t j) {
+                    if (labels[j] >= 0) consider(labels[j]);
+                });
+            }
+            if (best >= 0) attach.emplace_back(i, best);
+        }
+    }
+}
+
+/// Chooses where normals should face and where ranges are measured from.
+struct Orientation {
+    OrientationSource source = OrientationSource::kUp;
+    Vec3d origin = Vec3d::Zero();  // single origin (viewpoint or frame origin)
+};
+
+Orientation choose_orientation(const PointCloud& cloud, const GrowerConfig& cfg, const Aabb& box) {
+    if (cloud.has_scan_index() && !cloud.scan_origins.empty())
+        return {OrientationSource::kScanOrigins, {}};
+    if (cfg.viewpoint) return {OrientationSource::kViewpoint, *cfg.viewpoint};
+    if (cloud.viewpoint) return {OrientationSource::kViewpoint, *cloud.viewpoint};
+    // A scan in its sensor's frame has the frame origin among its points: accept the origin if it
+    // lies within the points' box grown by the box's largest side. Otherwise (georeferenced
+    // survey data) assume an overhead sensor and face +z.
+    const Vec3d frame_origin = -cloud.offset;
+    if (!box.empty()) {
+        const double grow = box.size().maxCoeff();
+        if ((frame_origin.array() >= box.min.array() - grow).all() &&
+            (frame_origin.array() <= box.max.array() + grow).all())
+            return {OrientationSource::kFrameOrigin, frame_origin};
+    }
+    return {OrientationSource::kUp, {}};
+}
+
+}  // namespace
+
+SurfaceGrower::SurfaceGrower(GrowerConfig config) : config_(std::move(config)) {
+    validate(config_);
+}
+
+GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
+    const GrowerConfig& cfg = config_;
+    const int threads = cfg.threads > 0 ? cfg.threads : std::max(1, omp_get_num_procs());
+    GrowResult result;
+    GrowStats& st = result.stats;
+    const std::size_t n_in = cloud.points.size();
+    st.points_in = n_in;
+    auto report = [&](std::string_view stage, double f) {
+        if (cfg.progress) cfg.progress(stage, f);
+    };
+
+    // --- Stage 1: the cube index over valid points inside the crop.
+    auto t0 = Clock::now();
+    std::vector<std::uint8_t> include;
+    for (const Vec3f& p : cloud.points) st.invalid_points += is_finite(p) ? 0 : 1;
+    Aabb valid_box;  // of the points grown, for choosing the orientation rule
+    if (cfg.crop.active()) {
+        include.assign(n_in, 1);
+        const Vec3d center = cfg.crop.center   ? *cfg.crop.center
+                             : cfg.viewpoint   ? *cfg.viewpoint
+                             : cloud.viewpoint ? *cloud.viewpoint
+                                               : Vec3d(-cloud.offset);
+        const double r2 = cfg.crop.radius ? *cfg.crop.radius * *cfg.crop.radius : 0.0;
+        for (std::size_t i = 0; i < n_in; ++i) {
+            const Vec3f& pf = cloud.points[i];
+            if (!is_finite(pf)) continue;
+            const Vec3d p = pf.cast<double>();
+            const bool inside = (!cfg.crop.box || cfg.crop.box->contains(p)) &&
+                                (!cfg.crop.radius || (p - center).squaredNorm() <= r2);
+            if (!inside) {
+                include[i] = 0;
+                ++st.cropped_points;
+            } else {
+                valid_box.add(p);
+            }
+        }
+    } else {
+        for (const Vec3f& p : cloud.points)
+            if (is_finite(p)) valid_box.add(p.cast<double>());
+    }
+    const CubeIndex index(cloud.points, cfg.mu, include, threads);
+    include = {};
+    const std::size_t n = index.size();
+    st.valid_points = n;
+    st.seconds.index = seconds_since(t0);
+    report("index", 1.0);
+
+    // --- Stage 2: growing, slab by slab, even colour then odd.
+    t0 = Clock::now();
+    const int reach = static_cast<int>(std::ceil(cfg.max_radius() / index.cube_size()));
+    const std::size_t target = std::clamp<std::size_t>(n / 256, 4096, 65536);
+    const std::vector<Slab> slabs = partition_slabs(index, 2 * reach, target);
+    std::vector<std::int32_t> labels(n, -1);
+    std::vector<std::vector<GrownSurface>> grown(slabs.size());
+    std::vector<SlabCounters> counters(slabs.size());
+    std::vector<Scratch> scratch(static_cast<std::size_t>(threads));
+    const GrowContext ctx{index, cfg, labels};
+    std::atomic<std::size_t> done{0};
+    for (int colour = 0; colour < 2; ++colour) {
+        for_each_slab_of_colour(slabs.size(), colour, threads, [&](std::size_t s, int t) {
+            grow_slab(ctx, slabs[s], s, scratch[static_cast<std::size_t>(t)], grown[s],
+                      counters[s]);
+            const std::size_t d = ++done;
+            if (t == 0) report("grow", double(d) / double(slabs.size()));
+        });
+    }
+    // Surface ids follow the home points' sorted order: slab order, then home order within a slab.
+    std::vector<GrownSurface> all;
+    for (std::size_t s = 0; s < slabs.size(); ++s) {
+        std::sort(grown[s].begin(), grown[s].end(),
+                  [](const GrownSurface& a, const GrownSurface& b) { return a.home < b.home; });
+        all.insert(all.end(), grown[s].begin(), grown[s].end());
+        grown[s] = {};
+        st.homes_tried += counters[s].tried;
+        st.rejected_sparse += counters[s].sparse;
+        st.rejected_nonplanar += counters[s].nonplanar;
+        st.adapted_surfaces += counters[s].adapted;
+    }
+    {
+        std::vector<std::int32_t> sid_of_home(n, -1);
+        for (std::size_t k = 0; k < all.size(); ++k)
+            sid_of_home[all[k].home] = static_cast<std::int32_t>(k);
+#pragma omp parallel for num_threads(threads) schedule(static)
+        for (std::size_t i = 0; i < n; ++i) {
+            if (labels[i] >= 0) labels[i] = sid_of_home[static_cast<std::size_t>(labels[i])];
+        }
+    }
+    result.surfaces.resize(all.size());
+    std::vector<double> tolerance(all.size());
+    for (std::size_t k = 0; k < all.size(); ++k) {
+        const GrownSurface& g = all[k];
+        Surface& s = result.surfaces[k];
+        s.home = index.world_point(g.home);
+        s.centroid = s.home + g.fit.centroid;
+        s.normal = g.fit.normal;
+        s.eigenvalues = g.fit.eigenvalues;
+        s.radius = g.radius;
+        s.neighbours = g.neighbours;
+        tolerance[k] = cfg.tolerance() * double(g.radius) / cfg.mu;
+    }
+    st.surfaces = all.size();
+    st.seconds.grow = seconds_since(t0);
+    for (const std::int32_t l : labels) st.registered_grown += l >= 0 ? 1 : 0;
+
+    // --- Stage 3: attach leftovers to the best-fitting neighbouring surface.
+    t0 = Clock::now();
+    if (cfg.attach_leftovers && !all.empty()) {
+        std::vector<std::vector<std::pair<std::uint32_t, std::int32_t>>> attach(slabs.size());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+        for (std::size_t s = 0; s < slabs.size(); ++s) {
+            attach_slab(index, cfg, slabs[s], labels, result.surfaces, tolerance,
+                        scratch[static_cast<std::size_t>(omp_get_thread_num())], attach[s]);
+        }
+        for (const auto& list : attach)
+            for (const auto& [i, sid] : list) labels[i] = sid;
+    }
+    st.seconds.attach = seconds_since(t0);
+    report("attach", 1.0);
+
+    // --- Stage 4: member statistics, orientation, labels in input order, range bands.
+    t0 = Clock::now();
+    std::vector<double> residual_sum(all.size(), 0.0);
+    const auto orig = index.original_indices();
+    result.labels.assign(n_in, -1);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::int32_t l = labels[i];
+        result.labels[orig[i]] = l;
+        if (l < 0) continue;
+        ++st.registered;
+        Surface& s = result.surfaces[static_cast<std::size_t>(l)];
+        const Vec3d p = index.world_point(static_cast<std::uint32_t>(i));
+        ++s.point_count;
+        s.bounds.add(p);
+        residual_sum[static_cast<std::size_t>(l)] += std::abs(s.normal.dot(p - s.centroid));
+    }
+    for (std::size_t k = 0; k < all.size(); ++k) {
+        Surface& s = result.surfaces[k];
+        if (s.point_count) s.mean_residual = residual_sum[k] / s.point_count;
+    }
+    st.noise_points = st.valid_points - st.registered;
+
+    const Orientation orient = choose_orientation(cloud, cfg, valid_box);
+    st.orientation = orient.source;
+    auto origin_of = [&](std::uint32_t sorted) -> Vec3d {
+        if (orient.source == OrientationSource::kScanOrigins) {
+            const std::uint32_t scan = cloud.scan_index[orig[sorted]];
+            if (scan < cloud.scan_origins.size()) return cloud.scan_origins[scan];
+        }
+        return orient.origin;
+    };
+    for (std::size_t k = 0; k < all.size(); ++k) {
+        Surface& s = result.surfaces[k];
+        const Vec3d towards = orient.source == OrientationSource::kUp
+                                  ? Vec3d::UnitZ()
+                                  : Vec3d(origin_of(all[k].home) - s.home);
+        if (s.normal.dot(towards) < 0) s.normal = -s.normal;
+    }
+    st.range_known = orient.source != OrientationSource::kUp;
+    st.range_origin = orient.origin;
+    if (st.range_known) {
+        for (std::size_t i = 0; i < n; ++i) {
+            const double r = (index.world_point(static_cast<std::uint32_t>(i)) -
+                              origin_of(static_cast<std::uint32_t>(i)))
+                                 .norm();
+            const auto band =
+                static_cast<std::size_t>(std::min(r / cfg.range_band, double(kMaxRangeBands - 1)));
+            if (band >= st.range_bands.size()) st.range_bands.resize(band + 1);
+            ++st.range_bands[band].points;
+            st.range_bands[band].registered += labels[i] >= 0 ? 1 : 0;
+        }
+        for (std::size_t b = 0; b < st.range_bands.size(); ++b) {
+            st.range_bands[b].from = double(b) * cfg.range_band;
+            st.range_bands[b].to = double(b + 1) * cfg.range_band;
+        }
+        if (st.range_bands.size() == kMaxRangeBands)  // the last band is open-ended
+            st.range_bands.back().to = std::numeric_limits<double>::infinity();
+    }
+    st.seconds.finish = seconds_since(t0);
+    report("finish", 1.0);
+    return result;
+}
+
+}  // namespace surfgrow

@@ -1,0 +1,41 @@
+// Surface growing (paper section 4.2): random home points, PCA, registration.
+#pragma once
+
+#include "surfgrow/core/grow_result.hpp"
+#include "surfgrow/core/grower_config.hpp"
+#include "surfgrow/core/point_cloud.hpp"
+
+namespace surfgrow {
+
+/// Grows planar surface patches over a point cloud.
+///
+/// For each home point, drawn at random (seeded) among points not yet registered: gather the
+/// points within mu through the cube index; with at least min_pts of them, fit a plane by PCA;
+/// if eq. (2) holds, register the unregistered points within mu of the home point and within the
+/// plane tolerance of the plane as one surface. A home point without support is rejected as noise.
+///
+/// Threads: space is cut into slabs along x, at least two neighbourhood radii wide; even slabs
+/// grow in parallel, then odd ones, so two surfaces grown at once can never reach the same point.
+/// Each slab draws its home points from its own stream of the seed. The result is therefore the
+/// same, byte for byte, for any number of threads.
+class SurfaceGrower {
+  public:
+    /// Throws Error(kInvalidParameter) if the configuration is out of range.
+    explicit SurfaceGrower(GrowerConfig config);
+
+    [[nodiscard]] const GrowerConfig& config() const { return config_; }
+
+    /// Grows surfaces over `cloud`. An empty cloud (or one with no valid point) gives no surfaces.
+    [[nodiscard]] GrowResult grow(const PointCloud& cloud) const;
+
+  private:
+    GrowerConfig config_;
+};
+
+/// One-call helper: SurfaceGrower(config).grow(cloud).
+[[nodiscard]] inline GrowResult grow_surfaces(const PointCloud& cloud,
+                                              const GrowerConfig& config = {}) {
+    return SurfaceGrower(config).grow(cloud);
+}
+
+}  // namespace surfgrow

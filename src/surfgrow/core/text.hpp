@@ -1,0 +1,29 @@
+// Building user-facing messages without chains of operator+.
+#pragma once
+
+#include <charconv>
+#include <cstdio>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+namespace surfgrow {
+
+/// Concatenates string pieces: cat({"mu must be positive, got ", num(mu)}).
+[[nodiscard]] inline std::string cat(std::initializer_list<std::string_view> parts) {
+    std::size_t size = 0;
+    for (auto p : parts) size += p.size();
+    std::string out;
+    out.reserve(size);
+    for (auto p : parts) out.append(p);
+    return out;
+}
+
+/// A number as a person would write it: shortest round-trip form ("0.012", "1e+30").
+[[nodiscard]] inline std::string num(double v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+}
+
+}  // namespace surfgrow
