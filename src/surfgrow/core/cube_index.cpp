@@ -53,8 +53,9 @@ CubeIndex::CubeIndex(std::span<const Vec3f> points, double cube_size,
         cube_start_.assign(1, 0);
         return;
     }
-    // One empty cube below the data keeps every neighbour coordinate >= 0.
-    origin_ = box.min - Vec3d::Constant(cube_size_);
+    // Half a cube plus one empty cube below the data: every occupied coordinate is >= 1, so every
+    // neighbour coordinate is >= 0, whatever the float rounding of the local coordinates.
+    origin_ = box.min - Vec3d::Constant(1.5 * cube_size_);
     const Vec3d span = (box.max - origin_) * inv_cube_;
     for (int a = 0; a < 3; ++a) {
         // Highest coordinate is floor(span)+1 for the neighbour above; add 1 more for safety.
@@ -74,16 +75,15 @@ CubeIndex::CubeIndex(std::span<const Vec3f> points, double cube_size,
     shift_y_ = bits_.z();
     shift_x_ = bits_.z() + bits_.y();
 
-    // Keys and input indices of the included finite points, in input order.
+    // Keys and input indices of the included finite points, in input order. Keys come from the
+    // float local coordinates the queries use, so a point's cube and its distances agree exactly.
     std::vector<std::uint64_t> keys;
     std::vector<std::uint32_t> index;
     keys.reserve(count);
     index.reserve(count);
     for (std::size_t i = 0; i < n_in; ++i) {
         if (!included(include, i) || !is_finite(points[i])) continue;
-        const Vec3d local = points[i].cast<double>() - origin_;
-        const Eigen::Vector3i c((local * inv_cube_).array().floor().cast<int>());
-        keys.push_back(encode(c));
+        keys.push_back(encode(coords_of(local_of(points[i]))));
         index.push_back(static_cast<std::uint32_t>(i));
     }
     radix_sort_pairs(keys, index, bits_.sum(), threads);
@@ -95,10 +95,10 @@ CubeIndex::CubeIndex(std::span<const Vec3f> points, double cube_size,
     z_.resize(n + kPadding, 0.f);
 #pragma omp parallel for num_threads(threads) schedule(static) if (n > (1u << 16))
     for (std::size_t i = 0; i < n; ++i) {
-        const Vec3d local = points[index[i]].cast<double>() - origin_;
-        x_[i] = static_cast<float>(local.x());
-        y_[i] = static_cast<float>(local.y());
-        z_[i] = static_cast<float>(local.z());
+        const Vec3f local = local_of(points[index[i]]);
+        x_[i] = local.x();
+        y_[i] = local.y();
+        z_[i] = local.z();
     }
     cube_keys_.clear();
     cube_start_.clear();
@@ -128,22 +128,26 @@ Eigen::Vector3i CubeIndex::coords_of(const Vec3f& local) const {
     return c;
 }
 
+CubeIndex::Range CubeIndex::column_run(int x, int y, int zlo, int zhi) const {
+    const auto zmax = static_cast<int>((std::int64_t{1} << bits_.z()) - 1);
+    zlo = std::max(0, zlo);
+    zhi = std::min(zmax, zhi);
+    const Eigen::Vector3i lo(x, y, zlo);
+    if (cube_keys_.empty() || zlo > zhi || !in_key_space(lo)) return {};
+    const auto first = std::lower_bound(cube_keys_.begin(), cube_keys_.end(), encode(lo));
+    const auto last = std::upper_bound(first, cube_keys_.end(), encode({x, y, zhi}));
+    return {cube_start_[static_cast<std::size_t>(first - cube_keys_.begin())],
+            cube_start_[static_cast<std::size_t>(last - cube_keys_.begin())]};
+}
+
 void CubeIndex::column_ranges(const Eigen::Vector3i& coords, int reach,
                               std::vector<Range>& out) const {
-    if (cube_keys_.empty() || reach < 0) return;
-    const auto zmax = static_cast<int>((std::int64_t{1} << bits_.z()) - 1);
-    const int zlo = std::max(0, coords.z() - reach), zhi = std::min(zmax, coords.z() + reach);
-    if (zlo > zhi) return;
+    if (reach < 0) return;
     for (int dx = -reach; dx <= reach; ++dx) {
         for (int dy = -reach; dy <= reach; ++dy) {
-            const Eigen::Vector3i lo(coords.x() + dx, coords.y() + dy, zlo);
-            if (!in_key_space(lo)) continue;
-            const Eigen::Vector3i hi(lo.x(), lo.y(), zhi);
-            const auto first = std::lower_bound(cube_keys_.begin(), cube_keys_.end(), encode(lo));
-            const auto last = std::upper_bound(first, cube_keys_.end(), encode(hi));
-            if (first == last) continue;
-            out.push_back({cube_start_[static_cast<std::size_t>(first - cube_keys_.begin())],
-                           cube_start_[static_cast<std::size_t>(last - cube_keys_.begin())]});
+            const Range run = column_run(coords.x() + dx, coords.y() + dy, coords.z() - reach,
+                                         coords.z() + reach);
+            if (run.begin < run.end) out.push_back(run);
         }
     }
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -18,9 +19,9 @@ namespace surfgrow {
 /// the 27 cubes around a cube are 9 contiguous runs of the sorted points.
 ///
 /// Coordinates are stored as float relative to origin(), the low corner of the indexed points'
-/// bounding box less one cube. The cube side is the requested size enlarged by one part in 2^20,
-/// so that no float rounding can put two points within the requested size more than one cube
-/// apart: a radius query never misses a point.
+/// bounding box less one and a half cubes. The cube side is the requested size enlarged by one part
+/// in 2^20, so that no float rounding can put two points within the requested size more than one
+/// cube apart: a radius query never misses a point.
 class CubeIndex {
   public:
     /// A run [begin, end) of sorted point positions.
@@ -69,6 +70,9 @@ class CubeIndex {
     /// and z) of the cube at `coords`. Empty runs are omitted. Binary search per column.
     void column_ranges(const Eigen::Vector3i& coords, int reach, std::vector<Range>& out) const;
 
+    /// The run of points in cubes (x, y, zlo..zhi); empty if the column is outside the index.
+    [[nodiscard]] Range column_run(int x, int y, int zlo, int zhi) const;
+
     /// The 9 runs around each cube in [cube_begin, cube_end), in one linear sweep:
     /// out[9 * (c - cube_begin) + k]. Faster than column_ranges() when most cubes are visited.
     void neighbour_table(std::size_t cube_begin, std::size_t cube_end,
@@ -83,6 +87,9 @@ class CubeIndex {
     [[nodiscard]] Eigen::Vector3i key_bits() const { return bits_; }
 
   private:
+    [[nodiscard]] Vec3f local_of(const Vec3f& p) const {
+        return (p.cast<double>() - origin_).cast<float>();
+    }
     [[nodiscard]] std::uint64_t encode(const Eigen::Vector3i& c) const {
         return (std::uint64_t(std::uint32_t(c.x())) << shift_x_) |
                (std::uint64_t(std::uint32_t(c.y())) << shift_y_) |
@@ -114,14 +121,24 @@ template <class F>
 void CubeIndex::for_each_within(const Vec3d& q, double radius, F&& f) const {
     if (size() == 0 || !(radius >= 0)) return;
     const Vec3f ql = (q - origin_).cast<float>();
-    const int reach = static_cast<int>(std::ceil(radius * inv_cube_));
-    std::vector<Range> runs;
-    column_ranges(coords_of(ql), reach, runs);
     const auto r2 = static_cast<float>(radius * radius);
-    for (const Range& r : runs) {
-        for (std::uint32_t i = r.begin; i < r.end; ++i) {
+    auto scan = [&](std::uint32_t begin, std::uint32_t end) {
+        for (std::uint32_t i = begin; i < end; ++i) {
             const float dx = x_[i] - ql.x(), dy = y_[i] - ql.y(), dz = z_[i] - ql.z();
             if (dx * dx + dy * dy + dz * dz <= r2) f(i);
+        }
+    };
+    const double reach = std::ceil(radius * inv_cube_);
+    if ((2 * reach + 1) * (2 * reach + 1) > double(cube_count())) {
+        scan(0, static_cast<std::uint32_t>(size()));  // cheaper than visiting the columns
+        return;
+    }
+    const Eigen::Vector3i c = coords_of(ql);
+    const int k = static_cast<int>(reach);
+    for (int dx = -k; dx <= k; ++dx) {
+        for (int dy = -k; dy <= k; ++dy) {
+            const Range run = column_run(c.x() + dx, c.y() + dy, c.z() - k, c.z() + k);
+            scan(run.begin, run.end);
         }
     }
 }

@@ -30,7 +30,7 @@ struct StageTimes {
 enum class OrientationSource {
     kScanOrigins,  ///< each point's own scan origin (fused clouds)
     kViewpoint,    ///< one viewpoint: given, or from the file (PCD VIEWPOINT)
-    kFrameOrigin,  ///< none given; the cloud's frame origin lies among the points (sensor frame)
+    kFrameOrigin,  ///< none given; the frame origin is near the points (a sensor-frame scan)
     kUp,           ///< none given and the origin is far away (georeferenced): normals face +z
 };
 
@@ -40,13 +40,14 @@ struct GrowStats {
     std::uint64_t cropped_points = 0;  ///< outside the workspace crop: skipped
     std::uint64_t valid_points = 0;    ///< points grown (finite and inside the crop)
     std::uint64_t surfaces = 0;
-    std::uint64_t registered_grown = 0;    ///< registered by growing alone (the paper's figure)
-    std::uint64_t registered = 0;          ///< after the leftover pass
-    std::uint64_t homes_tried = 0;         ///< home points given a neighbourhood search
-    std::uint64_t rejected_sparse = 0;     ///< homes with fewer than min_pts neighbours (noise)
-    std::uint64_t rejected_nonplanar = 0;  ///< homes whose neighbourhood failed the plane test
-    std::uint64_t adapted_surfaces = 0;    ///< surfaces grown with a radius above mu
-    std::uint64_t noise_points = 0;        ///< valid points left unregistered
+    std::uint64_t registered_grown = 0;        ///< registered by growing alone (the paper's figure)
+    std::uint64_t registered = 0;              ///< after the leftover pass
+    std::uint64_t homes_tried = 0;             ///< home points given a neighbourhood search
+    std::uint64_t rejected_sparse = 0;         ///< homes with fewer than min_pts neighbours (noise)
+    std::uint64_t rejected_nonplanar = 0;      ///< homes whose neighbourhood failed the plane test
+    std::uint64_t adapted_surfaces = 0;        ///< surfaces grown with a radius above mu
+    std::uint64_t released_by_refinement = 0;  ///< members beyond the tolerance of a refined plane
+    std::uint64_t noise_points = 0;            ///< valid points left unregistered
     OrientationSource orientation = OrientationSource::kUp;
     bool range_known = false;            ///< whether range bands could be measured
     Vec3d range_origin = Vec3d::Zero();  ///< where ranges are measured from (single origin)

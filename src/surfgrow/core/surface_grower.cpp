@@ -15,6 +15,7 @@
 #include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/neighbourhood.hpp"
+#include "surfgrow/core/plane_pooling.hpp"
 #include "surfgrow/core/random.hpp"
 #include "surfgrow/core/text.hpp"
 
@@ -51,6 +52,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxRangeBands = 1024;
+// The frame origin counts as the sensor if it lies within this many box diagonals of the points.
+constexpr double kFrameOriginReach = 10.0;
 using Range = CubeIndex::Range;
 
 double seconds_since(Clock::time_point t0) {
@@ -92,7 +95,8 @@ struct GrownSurface {
     std::uint32_t home = 0;
     float radius = 0;
     std::uint32_t neighbours = 0;
-    PlaneFit fit;  // centroid relative to the home point, local frame
+    PlaneFit fit;     // centroid relative to the home point, local frame
+    Moments moments;  // about the home point, for normal pooling
 };
 
 struct SlabCounters {
@@ -163,7 +167,7 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
             continue;
         }
         if (radius > cfg.mu) ++counters.adapted;
-        out.push_back({home, static_cast<float>(radius), static_cast<std::uint32_t>(m.n), fit});
+        out.push_back({home, static_cast<float>(radius), static_cast<std::uint32_t>(m.n), fit, m});
     }
 }
 
@@ -236,14 +240,14 @@ Orientation choose_orientation(const PointCloud& cloud, const GrowerConfig& cfg,
         return {OrientationSource::kScanOrigins, {}};
     if (cfg.viewpoint) return {OrientationSource::kViewpoint, *cfg.viewpoint};
     if (cloud.viewpoint) return {OrientationSource::kViewpoint, *cloud.viewpoint};
-    // A scan in its sensor's frame has the frame origin among its points: accept the origin if it
-    // lies within the points' box grown by the box's largest side. Otherwise (georeferenced
-    // survey data) assume an overhead sensor and face +z.
+    // A scan in its sensor's frame has the frame origin near its points (within a few extents);
+    // a georeferenced survey has it thousands of extents away. Near: face the origin. Far: assume
+    // an overhead sensor and face +z.
     const Vec3d frame_origin = -cloud.offset;
     if (!box.empty()) {
-        const double grow = box.size().maxCoeff();
-        if ((frame_origin.array() >= box.min.array() - grow).all() &&
-            (frame_origin.array() <= box.max.array() + grow).all())
+        const Vec3d nearest = frame_origin.cwiseMax(box.min).cwiseMin(box.max);
+        if ((frame_origin - nearest).norm() <=
+            kFrameOriginReach * std::max(box.size().norm(), 1e-9))
             return {OrientationSource::kFrameOrigin, frame_origin};
     }
     return {OrientationSource::kUp, {}};
@@ -356,6 +360,37 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         tolerance[k] = cfg.tolerance() * double(g.radius) / cfg.mu;
     }
     st.surfaces = all.size();
+    if (cfg.pool_angle_deg > 0 && !all.empty()) {
+        std::vector<PoolablePatch> patches(all.size());
+        for (std::size_t k = 0; k < all.size(); ++k) {
+            const Surface& s = result.surfaces[k];
+            patches[k] = {s.home, s.centroid, s.normal, s.eigenvalues[0], all[k].moments};
+        }
+        PoolingConfig pc;
+        pc.radius = cfg.pool_radius > 0 ? cfg.pool_radius : 2 * cfg.mu;
+        pc.max_angle = cfg.pool_angle_deg * M_PI / 180.0;
+        pc.min_offset = cfg.mu / 10;
+        pc.max_offset = cfg.mu / 2;
+        pc.threads = threads;
+        const std::vector<Vec3d> pooled = pool_normals(patches, pc);
+        for (std::size_t k = 0; k < all.size(); ++k) result.surfaces[k].normal = pooled[k];
+        // A reported plane must hold its members: release any the refined plane no longer fits
+        // (rare: points at the tolerance's edge); the leftover pass may re-attach them.
+        std::uint64_t released = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : released)
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::int32_t l = labels[i];
+            if (l < 0) continue;
+            const Surface& s = result.surfaces[static_cast<std::size_t>(l)];
+            const double d = std::abs(
+                s.normal.dot(index.world_point(static_cast<std::uint32_t>(i)) - s.centroid));
+            if (d > tolerance[static_cast<std::size_t>(l)]) {
+                labels[i] = -1;
+                ++released;
+            }
+        }
+        st.released_by_refinement = released;
+    }
     st.seconds.grow = seconds_since(t0);
     for (const std::int32_t l : labels) st.registered_grown += l >= 0 ? 1 : 0;
 

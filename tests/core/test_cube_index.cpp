@@ -1,0 +1,214 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "surfgrow/core/cube_index.hpp"
+#include "surfgrow/core/error.hpp"
+
+namespace surfgrow {
+namespace {
+
+std::vector<std::uint32_t> brute_force(const std::vector<Vec3f>& pts, const CubeIndex& index,
+                                       std::uint32_t q_sorted, float radius) {
+    // Same arithmetic as the index: local float coordinates.
+    const Vec3f q = index.local_point(q_sorted);
+    std::vector<std::uint32_t> out;
+    for (std::uint32_t i = 0; i < index.size(); ++i) {
+        const Vec3f d = index.local_point(i) - q;
+        if (d.x() * d.x() + d.y() * d.y() + d.z() * d.z() <= radius * radius) out.push_back(i);
+    }
+    (void)pts;
+    return out;
+}
+
+std::vector<std::uint32_t> via_table(const CubeIndex& index, std::uint32_t q_sorted, float radius) {
+    std::vector<CubeIndex::Range> table;
+    const std::uint32_t c = index.cube_of(q_sorted);
+    index.neighbour_table(c, c + 1, table);
+    const Vec3f q = index.local_point(q_sorted);
+    std::vector<std::uint32_t> out;
+    for (const auto& r : table) {
+        for (std::uint32_t i = r.begin; i < r.end; ++i) {
+            const Vec3f d = index.local_point(i) - q;
+            if (d.x() * d.x() + d.y() * d.y() + d.z() * d.z() <= radius * radius) out.push_back(i);
+        }
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+std::vector<std::uint32_t> via_query(const CubeIndex& index, std::uint32_t q_sorted,
+                                     double radius) {
+    std::vector<std::uint32_t> out;
+    index.for_each_within(index.world_point(q_sorted), radius,
+                          [&](std::uint32_t i) { out.push_back(i); });
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+// Every point's neighbourhood, found three ways, must agree with brute force.
+void check_all_queries(const std::vector<Vec3f>& pts, double mu) {
+    const CubeIndex index(pts, mu);
+    ASSERT_EQ(index.size(), pts.size());
+    const auto r = static_cast<float>(mu);
+    for (std::uint32_t q = 0; q < index.size(); ++q) {
+        const auto expected = brute_force(pts, index, q, r);
+        ASSERT_EQ(via_table(index, q, r), expected) << "table, point " << q;
+        ASSERT_EQ(via_query(index, q, mu), expected) << "query, point " << q;
+    }
+}
+
+TEST(CubeIndex, RandomCloudMatchesBruteForce) {
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<float> u(-0.1f, 0.1f);
+    std::vector<Vec3f> pts(3000);
+    for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
+    check_all_queries(pts, 0.012);
+}
+
+TEST(CubeIndex, PointsExactlyOnCubeBorders) {
+    // A lattice at exactly the cube spacing puts every point on a border, and neighbours at
+    // exactly mu: the query must include them (distance <= mu).
+    const double mu = 0.01;
+    std::vector<Vec3f> pts;
+    for (int i = 0; i < 8; ++i)
+        for (int j = 0; j < 8; ++j)
+            for (int k = 0; k < 4; ++k)
+                pts.emplace_back(float(i * mu), float(j * mu), float(k * mu));
+    check_all_queries(pts, mu);
+    // The same lattice on the index's own (slightly enlarged) cube borders.
+    const CubeIndex probe(pts, mu);
+    std::vector<Vec3f> on_borders;
+    for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 6; ++j)
+            on_borders.emplace_back(float(i * probe.cube_size()), float(j * probe.cube_size()),
+                                    0.f);
+    check_all_queries(on_borders, mu);
+}
+
+TEST(CubeIndex, FarApartClustersStaySparse) {
+    // Two clusters 10 km apart at mu = 12 mm: no dense grid could hold this.
+    std::mt19937 rng(2);
+    std::uniform_real_distribution<float> u(0.f, 0.05f);
+    std::vector<Vec3f> pts;
+    for (int i = 0; i < 500; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+    for (int i = 0; i < 500; ++i)
+        pts.emplace_back(10000.f + u(rng), -5000.f + u(rng), 300.f + u(rng));
+    const CubeIndex index(pts, 0.012);
+    EXPECT_LE(index.cube_count(), pts.size());
+    EXPECT_GE(index.key_bits().sum(), 40);
+    for (std::uint32_t q = 0; q < index.size(); q += 7) {
+        const auto expected = brute_force(pts, index, q, 0.012f);
+        ASSERT_EQ(via_query(index, q, 0.012), expected);
+        ASSERT_EQ(via_table(index, q, 0.012f), expected);
+    }
+}
+
+TEST(CubeIndex, LargeRadiusQueriesMatchBruteForce) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0.f, 0.2f);
+    std::vector<Vec3f> pts(2000);
+    for (auto& p : pts) p = {u(rng), u(rng), u(rng) * 0.1f};
+    const CubeIndex index(pts, 0.01);
+    for (double radius : {0.005, 0.01, 0.025, 0.047}) {
+        for (std::uint32_t q = 0; q < index.size(); q += 13) {
+            ASSERT_EQ(via_query(index, q, radius),
+                      brute_force(pts, index, q, static_cast<float>(radius)))
+                << "radius " << radius;
+        }
+    }
+}
+
+TEST(CubeIndex, CubesHoldTheirPointsContiguously) {
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> u(-1.f, 1.f);
+    std::vector<Vec3f> pts(5000);
+    for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
+    const CubeIndex index(pts, 0.1, {}, 2);
+    std::set<std::uint32_t> seen;
+    for (std::size_t c = 0; c < index.cube_count(); ++c) {
+        if (c > 0) {
+            EXPECT_LT(index.cube_key(c - 1), index.cube_key(c));
+        }
+        for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
+            EXPECT_EQ(index.coords_of(index.local_point(i)), index.cube_coords(c));
+            EXPECT_EQ(index.cube_of(i), c);
+            // Sorted coordinates are the input's, less the origin.
+            const Vec3d w = index.world_point(i);
+            EXPECT_NEAR((w - pts[index.original_indices()[i]].cast<double>()).norm(), 0.0, 1e-6);
+            seen.insert(index.original_indices()[i]);
+        }
+    }
+    EXPECT_EQ(seen.size(), pts.size());
+}
+
+TEST(CubeIndex, SameIndexForAnyThreadCount) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-3.f, 3.f);
+    std::vector<Vec3f> pts(150000);
+    for (auto& p : pts) p = {u(rng), u(rng), u(rng) * 0.2f};
+    const CubeIndex a(pts, 0.012, {}, 1), b(pts, 0.012, {}, 2), c(pts, 0.012, {}, 4);
+    ASSERT_EQ(a.cube_count(), b.cube_count());
+    ASSERT_TRUE(std::equal(a.original_indices().begin(), a.original_indices().end(),
+                           b.original_indices().begin()));
+    ASSERT_TRUE(std::equal(a.original_indices().begin(), a.original_indices().end(),
+                           c.original_indices().begin()));
+}
+
+TEST(CubeIndex, SkipsNonFiniteAndExcludedPoints) {
+    const float nan = std::nanf(""), inf = INFINITY;
+    std::vector<Vec3f> pts = {{0, 0, 0},   {nan, 0, 0},    {0.001f, 0, 0},
+                              {0, inf, 0}, {0.002f, 0, 0}, {0, 0, -inf}};
+    std::vector<std::uint8_t> include = {1, 1, 0, 1, 1, 1};
+    const CubeIndex index(pts, 0.01, include);
+    ASSERT_EQ(index.size(), 2u);
+    std::set<std::uint32_t> kept(index.original_indices().begin(), index.original_indices().end());
+    EXPECT_EQ(kept, (std::set<std::uint32_t>{0, 4}));
+}
+
+TEST(CubeIndex, EmptyAndAllInvalidClouds) {
+    const CubeIndex empty(std::vector<Vec3f>{}, 0.01);
+    EXPECT_EQ(empty.size(), 0u);
+    EXPECT_EQ(empty.cube_count(), 0u);
+    int calls = 0;
+    empty.for_each_within(Vec3d::Zero(), 1.0, [&](std::uint32_t) { ++calls; });
+    EXPECT_EQ(calls, 0);
+    const CubeIndex nans(std::vector<Vec3f>(10, Vec3f::Constant(std::nanf(""))), 0.01);
+    EXPECT_EQ(nans.size(), 0u);
+}
+
+TEST(CubeIndex, RejectsBadCubeSizeAndHugeExtent) {
+    const std::vector<Vec3f> pts = {{0, 0, 0}, {1, 1, 1}};
+    for (double bad : {0.0, -1.0, std::nan(""), double(INFINITY)}) {
+        try {
+            const CubeIndex index(pts, bad);
+            FAIL() << "accepted cube size " << bad;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ErrorCode::kInvalidParameter);
+        }
+    }
+    const std::vector<Vec3f> huge = {{-1e30f, 0, 0}, {1e30f, 1e30f, 1e30f}};
+    try {
+        const CubeIndex index(huge, 0.012);
+        FAIL() << "indexed a 1e30 extent";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::kCloudTooLarge);
+        EXPECT_NE(std::string(e.what()).find("crop"), std::string::npos);
+    }
+}
+
+TEST(CubeIndex, QueryFarOutsideTheCloudFindsNothing) {
+    const std::vector<Vec3f> pts = {{0, 0, 0}, {0.001f, 0, 0}};
+    const CubeIndex index(pts, 0.01);
+    int calls = 0;
+    index.for_each_within(Vec3d(1e12, -1e12, 5), 0.01, [&](std::uint32_t) { ++calls; });
+    EXPECT_EQ(calls, 0);
+    index.for_each_within(Vec3d(0, 0, 0), 0.0005, [&](std::uint32_t) { ++calls; });
+    EXPECT_EQ(calls, 1);
+}
+
+}  // namespace
+}  // namespace surfgrow

@@ -1,0 +1,396 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "support/test_support.hpp"
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/plane_fit.hpp"
+#include "surfgrow/core/surface_grower.hpp"
+
+namespace surfgrow {
+namespace {
+
+using test::Rect;
+
+constexpr double kDeg = M_PI / 180.0;
+
+// A cloud sampled from rectangles, with the true normal of every point's face.
+struct Scene {
+    PointCloud cloud;
+    std::vector<Vec3d> face_normals;  // by label
+};
+
+Scene sample_scene(const std::vector<Rect>& faces, double spacing, double sigma,
+                   std::uint64_t seed) {
+    Scene s;
+    std::mt19937_64 rng(seed);
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        test::sample_rect(faces[f], spacing, 0.3, sigma, rng, s.cloud.points, &s.cloud.labels,
+                          static_cast<int32_t>(f));
+        s.face_normals.push_back(faces[f].normal());
+    }
+    return s;
+}
+
+// Per-point angle between the point's surface normal and its true face normal (lines, not vectors).
+std::vector<double> normal_errors(const Scene& s, const GrowResult& r) {
+    std::vector<double> err;
+    for (std::size_t i = 0; i < s.cloud.size(); ++i) {
+        const int32_t l = r.labels[i];
+        if (l < 0) continue;
+        err.push_back(
+            axis_angle_between(r.surfaces[static_cast<std::size_t>(l)].normal,
+                               s.face_normals[static_cast<std::size_t>(s.cloud.labels[i])]));
+    }
+    return err;
+}
+
+// Invariants every result must satisfy, whatever the input.
+void check_invariants(const PointCloud& cloud, const GrowerConfig& cfg, const GrowResult& r) {
+    const GrowStats& st = r.stats;
+    ASSERT_EQ(r.labels.size(), cloud.size());
+    EXPECT_EQ(st.points_in, cloud.size());
+    EXPECT_EQ(st.points_in, st.invalid_points + st.cropped_points + st.valid_points);
+    EXPECT_EQ(st.surfaces, r.surfaces.size());
+    EXPECT_LE(st.registered_grown, st.registered);
+    EXPECT_EQ(st.valid_points, st.registered + st.noise_points);
+    EXPECT_EQ(st.homes_tried, st.surfaces + st.rejected_sparse + st.rejected_nonplanar);
+    std::vector<std::uint32_t> count(r.surfaces.size(), 0);
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        const int32_t l = r.labels[i];
+        if (l < 0) continue;
+        ASSERT_LT(static_cast<std::size_t>(l), r.surfaces.size());
+        const Surface& s = r.surfaces[static_cast<std::size_t>(l)];
+        const Vec3d p = cloud.points[i].cast<double>();
+        ++count[static_cast<std::size_t>(l)];
+        // Registered within the plane tolerance (scaled with an adapted radius) ...
+        const double tol = cfg.tolerance() * s.radius / cfg.mu;
+        EXPECT_LE(std::abs(s.plane().signed_distance(p)), tol * (1 + 1e-5) + 1e-6);
+        // ... and near the home point: within its radius, or a neighbour's reach for leftovers.
+        EXPECT_LE((p - s.home).norm(), s.radius + cfg.max_radius() + 1e-6);
+        EXPECT_TRUE((p.array() >= s.bounds.min.array() - 1e-6).all() &&
+                    (p.array() <= s.bounds.max.array() + 1e-6).all());
+    }
+    std::uint64_t total = 0;
+    for (std::size_t k = 0; k < r.surfaces.size(); ++k) {
+        const Surface& s = r.surfaces[k];
+        EXPECT_EQ(s.point_count, count[k]);
+        EXPECT_GE(s.neighbours, static_cast<std::uint32_t>(cfg.min_pts));
+        EXPECT_NEAR(s.normal.norm(), 1.0, 1e-9);
+        EXPECT_TRUE(is_planar(s.eigenvalues, cfg.alpha));
+        total += s.point_count;
+    }
+    EXPECT_EQ(total, st.registered);
+}
+
+GrowerConfig config_mm(double mu_mm = 12) {
+    GrowerConfig c;
+    c.mu = mu_mm / 1000;
+    return c;
+}
+
+TEST(SurfaceGrower, NoiseFreePlaneIsRegisteredWithExactNormals) {
+    const Scene s =
+        sample_scene({{{0, 0, 0.5}, Vec3d::UnitX(), Vec3d::UnitY(), 0.2, 0.15}}, 0.004, 0.0, 1);
+    const GrowerConfig cfg = config_mm();
+    const GrowResult r = grow_surfaces(s.cloud, cfg);
+    check_invariants(s.cloud, cfg, r);
+    EXPECT_EQ(r.stats.registered, r.stats.valid_points);
+    for (const Surface& surf : r.surfaces)
+        EXPECT_LT(axis_angle_between(surf.normal, Vec3d::UnitZ()), 1e-3);
+    // The paper's data reduction: many points per surface.
+    EXPECT_GT(r.stats.data_reduction(), 10.0);
+}
+
+TEST(SurfaceGrower, BoxSceneMeetsThePapersRegistrationWithAccurateNormals) {
+    // A 0.6 x 0.4 x 0.3 m box sampled every 5 mm (the paper's spacing at 1 m) with 1.5 mm noise.
+    const Scene s =
+        sample_scene(test::box_faces({-0.3, -0.2, 0.5}, {0.3, 0.2, 0.8}), 0.005, 0.0015, 2);
+    const GrowerConfig cfg = config_mm();
+    const GrowResult r = grow_surfaces(s.cloud, cfg);
+    check_invariants(s.cloud, cfg, r);
+    EXPECT_GE(r.stats.registered_fraction(), 0.99);
+    const auto err = normal_errors(s, r);
+    const double med = test::median(err), p95 = test::quantile(err, 0.95);
+    std::printf(
+        "box: %zu points, %llu surfaces, grown %.2f%%, final %.2f%%, normal error median %.2f deg, "
+        "p95 %.2f deg\n",
+        s.cloud.size(), static_cast<unsigned long long>(r.stats.surfaces),
+        100 * r.stats.registered_grown_fraction(), 100 * r.stats.registered_fraction(), med / kDeg,
+        p95 / kDeg);
+    EXPECT_LT(med, 3.0 * kDeg);
+    EXPECT_LT(p95, 15.0 * kDeg);
+}
+
+TEST(SurfaceGrower, IBeamSceneMeetsThePapersRegistrationWithAccurateNormals) {
+    const Scene s = sample_scene(test::ibeam_faces(1.0, 0.6, 0.3, 0.025, 0.014), 0.005, 0.0015, 3);
+    const GrowerConfig cfg = config_mm();
+    const GrowResult r = grow_surfaces(s.cloud, cfg);
+    check_invariants(s.cloud, cfg, r);
+    EXPECT_GE(r.stats.registered_fraction(), 0.99);
+    const auto err = normal_errors(s, r);
+    std::printf(
+        "ibeam: %zu points, %llu surfaces, grown %.2f%%, final %.2f%%, normal error median %.2f "
+        "deg\n",
+        s.cloud.size(), static_cast<unsigned long long>(r.stats.surfaces),
+        100 * r.stats.registered_grown_fraction(), 100 * r.stats.registered_fraction(),
+        test::median(err) / kDeg);
+    EXPECT_LT(test::median(err), 3.0 * kDeg);
+}
+
+TEST(SurfaceGrower, ByteIdenticalForAnyThreadCount) {
+    const Scene s = sample_scene(test::ibeam_faces(2.0, 0.6, 0.3, 0.025, 0.014), 0.005, 0.002, 4);
+    GrowerConfig cfg = config_mm();
+    cfg.seed = 42;
+    cfg.threads = 1;
+    const GrowResult ref = grow_surfaces(s.cloud, cfg);
+    ASSERT_GT(ref.surfaces.size(), 100u);
+    for (int threads : {2, 3, 8}) {
+        cfg.threads = threads;
+        const GrowResult r = grow_surfaces(s.cloud, cfg);
+        ASSERT_EQ(r.labels, ref.labels) << threads << " threads";
+        ASSERT_EQ(r.surfaces.size(), ref.surfaces.size());
+        for (std::size_t k = 0; k < r.surfaces.size(); ++k) {
+            const Surface &a = r.surfaces[k], &b = ref.surfaces[k];
+            ASSERT_EQ(a.home, b.home);
+            ASSERT_EQ(a.normal, b.normal);
+            ASSERT_EQ(a.centroid, b.centroid);
+            ASSERT_EQ(a.eigenvalues, b.eigenvalues);
+            ASSERT_EQ(a.point_count, b.point_count);
+            ASSERT_EQ(a.mean_residual, b.mean_residual);
+        }
+    }
+}
+
+TEST(SurfaceGrower, SeedChangesHomePointsButNotTheOutcome) {
+    const Scene s = sample_scene(test::box_faces({0, 0, 0}, {0.4, 0.3, 0.2}), 0.005, 0.001, 5);
+    GrowerConfig cfg = config_mm();
+    cfg.seed = 1;
+    const GrowResult a = grow_surfaces(s.cloud, cfg);
+    cfg.seed = 2;
+    const GrowResult b = grow_surfaces(s.cloud, cfg);
+    EXPECT_NE(a.labels, b.labels);
+    EXPECT_NEAR(double(a.stats.surfaces), double(b.stats.surfaces),
+                0.05 * double(a.stats.surfaces));
+    EXPECT_NEAR(a.stats.registered_fraction(), b.stats.registered_fraction(), 0.005);
+}
+
+TEST(SurfaceGrower, EmptyAndInvalidCloudsGiveNoSurfaces) {
+    const GrowerConfig cfg = config_mm();
+    const GrowResult empty = grow_surfaces(PointCloud{}, cfg);
+    EXPECT_TRUE(empty.surfaces.empty());
+    EXPECT_TRUE(empty.labels.empty());
+    EXPECT_EQ(empty.stats.valid_points, 0u);
+
+    PointCloud nans;
+    nans.points.assign(100, Vec3f(std::nanf(""), 0, 0));
+    const GrowResult r = grow_surfaces(nans, cfg);
+    EXPECT_TRUE(r.surfaces.empty());
+    EXPECT_EQ(r.stats.invalid_points, 100u);
+    EXPECT_EQ(r.labels, std::vector<int32_t>(100, -1));
+}
+
+TEST(SurfaceGrower, InvalidPointsKeepTheirPlaceAndLabelMinusOne) {
+    Scene s = sample_scene({{{0, 0, 1}, Vec3d::UnitX(), Vec3d::UnitY(), 0.1, 0.1}}, 0.004, 0.0, 6);
+    const std::size_t n = s.cloud.size();
+    for (std::size_t i = 0; i < n; i += 10) s.cloud.points[i] = Vec3f(INFINITY, 0, std::nanf(""));
+    const GrowResult r = grow_surfaces(s.cloud, config_mm());
+    check_invariants(s.cloud, config_mm(), r);
+    EXPECT_EQ(r.stats.invalid_points, (n + 9) / 10);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i % 10 == 0) {
+            EXPECT_EQ(r.labels[i], -1);
+        } else {
+            EXPECT_GE(r.labels[i], 0) << i;
+        }
+    }
+}
+
+TEST(SurfaceGrower, IsolatedNoisePointsAreRejectedAsNoise) {
+    Scene s = sample_scene({{{0, 0, 0}, Vec3d::UnitX(), Vec3d::UnitY(), 0.1, 0.1}}, 0.004, 0.0, 7);
+    const std::size_t plane_points = s.cloud.size();
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<float> u(0.3f, 3.f);
+    for (int i = 0; i < 200; ++i) s.cloud.points.emplace_back(u(rng), u(rng), u(rng));
+    const GrowResult r = grow_surfaces(s.cloud, config_mm());
+    EXPECT_EQ(r.stats.noise_points, 200u);
+    EXPECT_GE(r.stats.rejected_sparse, 200u);
+    for (std::size_t i = plane_points; i < s.cloud.size(); ++i) EXPECT_EQ(r.labels[i], -1);
+}
+
+TEST(SurfaceGrower, LeftoverPassClosesTheGapAtEdges) {
+    const Scene s = sample_scene(test::box_faces({0, 0, 0}, {0.3, 0.3, 0.3}), 0.005, 0.0015, 8);
+    GrowerConfig cfg = config_mm();
+    cfg.attach_leftovers = false;
+    const GrowResult plain = grow_surfaces(s.cloud, cfg);
+    check_invariants(s.cloud, cfg, plain);
+    EXPECT_EQ(plain.stats.registered, plain.stats.registered_grown);
+    cfg.attach_leftovers = true;
+    const GrowResult closed = grow_surfaces(s.cloud, cfg);
+    check_invariants(s.cloud, cfg, closed);
+    EXPECT_EQ(closed.stats.registered_grown, plain.stats.registered_grown);
+    EXPECT_GT(closed.stats.registered, plain.stats.registered);
+    EXPECT_GE(closed.stats.registered_fraction(), 0.99);
+    // Attaching must not cost accuracy: median normal error stays put.
+    EXPECT_LT(test::median(normal_errors(s, closed)),
+              test::median(normal_errors(s, plain)) + 0.5 * kDeg);
+}
+
+TEST(SurfaceGrower, AdaptiveRadiusRegistersSparseFarSurfaces) {
+    // 20 mm spacing (the URG at ~3 m): a 12 mm ball holds one or two points.
+    const Scene s =
+        sample_scene({{{0, 0, 3}, Vec3d::UnitX(), Vec3d::UnitY(), 0.5, 0.5}}, 0.02, 0.002, 9);
+    GrowerConfig cfg = config_mm();
+    const GrowResult fixed = grow_surfaces(s.cloud, cfg);
+    EXPECT_LT(fixed.stats.registered_fraction(), 0.1);
+    cfg.mu_max = 0.096;
+    const GrowResult adaptive = grow_surfaces(s.cloud, cfg);
+    check_invariants(s.cloud, cfg, adaptive);
+    EXPECT_GE(adaptive.stats.registered_fraction(), 0.99);
+    EXPECT_EQ(adaptive.stats.adapted_surfaces, adaptive.stats.surfaces);
+    std::vector<double> err;
+    for (const Surface& surf : adaptive.surfaces) {
+        EXPECT_GT(surf.radius, cfg.mu);
+        err.push_back(axis_angle_between(surf.normal, Vec3d::UnitZ()));
+    }
+    // ~18 points over 48 mm with 2 mm noise: about 1.3 degrees by theory.
+    EXPECT_LT(test::median(err), 2.0 * kDeg);
+    EXPECT_LT(test::quantile(err, 1.0), 10.0 * kDeg);
+}
+
+TEST(SurfaceGrower, WorkspaceCropKeepsOnlyPointsInside) {
+    const Scene s =
+        sample_scene({{{0, 0, 0}, Vec3d::UnitX(), Vec3d::UnitY(), 1.0, 1.0}}, 0.01, 0.0, 10);
+    GrowerConfig cfg = config_mm(25);
+    cfg.crop.radius = 0.5;
+    cfg.crop.center = Vec3d::Zero();
+    const GrowResult r = grow_surfaces(s.cloud, cfg);
+    check_invariants(s.cloud, cfg, r);
+    for (std::size_t i = 0; i < s.cloud.size(); ++i) {
+        if (s.cloud.points[i].norm() > 0.5f) {
+            EXPECT_EQ(r.labels[i], -1);
+        }
+    }
+    EXPECT_GT(r.stats.cropped_points, s.cloud.size() / 2);
+    EXPECT_GE(r.stats.registered_fraction(), 0.99);
+
+    cfg.crop = {};
+    Aabb box;
+    box.add({-0.2, -0.2, -1});
+    box.add({0.2, 0.2, 1});
+    cfg.crop.box = box;
+    const GrowResult b = grow_surfaces(s.cloud, cfg);
+    for (std::size_t i = 0; i < s.cloud.size(); ++i) {
+        if (!box.contains(s.cloud.points[i].cast<double>())) {
+            EXPECT_EQ(b.labels[i], -1);
+        }
+    }
+}
+
+TEST(SurfaceGrower, NormalsFaceTheViewpointOrTheirScanOrigin) {
+    const Scene s =
+        sample_scene(test::box_faces({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}), 0.01, 0.0, 11);
+    GrowerConfig cfg = config_mm(30);
+    cfg.viewpoint = Vec3d(0, 0, 0);  // inside the box: every normal points inwards
+    GrowResult r = grow_surfaces(s.cloud, cfg);
+    EXPECT_EQ(r.stats.orientation, OrientationSource::kViewpoint);
+    for (const Surface& surf : r.surfaces) EXPECT_GT(surf.normal.dot(-surf.home), 0.0);
+
+    // Two scans from outside, on opposite sides: each surface faces its home point's scanner.
+    PointCloud fused = s.cloud;
+    fused.scan_origins = {Vec3d(3, 0, 0), Vec3d(-3, 0, 0)};
+    fused.scan_index.resize(fused.size());
+    for (std::size_t i = 0; i < fused.size(); ++i)
+        fused.scan_index[i] = fused.points[i].x() >= 0 ? 0 : 1;
+    cfg.viewpoint.reset();
+    r = grow_surfaces(fused, cfg);
+    EXPECT_EQ(r.stats.orientation, OrientationSource::kScanOrigins);
+    for (const Surface& surf : r.surfaces) {
+        const Vec3d origin = surf.home.x() >= 0 ? Vec3d(3, 0, 0) : Vec3d(-3, 0, 0);
+        EXPECT_GE(surf.normal.dot(origin - surf.home), 0.0);
+    }
+}
+
+TEST(SurfaceGrower, WithoutViewpointUsesFrameOriginOrFacesUp) {
+    // A sensor-frame scan of a floor below the origin: normals face the origin (up).
+    const Scene floor =
+        sample_scene({{{1, 0, -0.8}, Vec3d::UnitX(), Vec3d::UnitY(), 0.3, 0.3}}, 0.005, 0.0, 12);
+    GrowResult r = grow_surfaces(floor.cloud, config_mm());
+    EXPECT_EQ(r.stats.orientation, OrientationSource::kFrameOrigin);
+    ASSERT_TRUE(r.stats.range_known);
+    for (const Surface& surf : r.surfaces) EXPECT_GT(surf.normal.z(), 0.9);
+    // Georeferenced: the same floor 5 km from the origin faces +z by rule.
+    Scene far = floor;
+    for (auto& p : far.cloud.points) p += Vec3f(5000, 0, 0);
+    far.cloud.points.front() = far.cloud.points.front();
+    r = grow_surfaces(far.cloud, config_mm());
+    EXPECT_EQ(r.stats.orientation, OrientationSource::kUp);
+    EXPECT_FALSE(r.stats.range_known);
+    for (const Surface& surf : r.surfaces) EXPECT_GT(surf.normal.z(), 0.9);
+}
+
+TEST(SurfaceGrower, RangeBandsCountEveryValidPoint) {
+    Scene s =
+        sample_scene({{{0.5, 0, 0}, Vec3d::UnitY(), Vec3d::UnitZ(), 0.3, 0.3}}, 0.005, 0.0, 13);
+    const Scene far =
+        sample_scene({{{2.5, 0, 0}, Vec3d::UnitY(), Vec3d::UnitZ(), 0.3, 0.3}}, 0.005, 0.0, 14);
+    s.cloud.points.insert(s.cloud.points.end(), far.cloud.points.begin(), far.cloud.points.end());
+    GrowerConfig cfg = config_mm();
+    cfg.viewpoint = Vec3d::Zero();
+    const GrowResult r = grow_surfaces(s.cloud, cfg);
+    ASSERT_TRUE(r.stats.range_known);
+    std::uint64_t points = 0, registered = 0;
+    for (const RangeBand& b : r.stats.range_bands) {
+        points += b.points;
+        registered += b.registered;
+    }
+    EXPECT_EQ(points, r.stats.valid_points);
+    EXPECT_EQ(registered, r.stats.registered);
+    ASSERT_GE(r.stats.range_bands.size(), 3u);
+    EXPECT_GT(r.stats.range_bands[0].points, 0u);  // 0.5 m plane
+    EXPECT_EQ(r.stats.range_bands[1].points, 0u);
+    EXPECT_GT(r.stats.range_bands[2].points, 0u);  // 2.5 m plane
+}
+
+TEST(SurfaceGrower, RejectsParametersOutOfRange) {
+    auto expect_invalid = [](GrowerConfig c, const char* what) {
+        try {
+            const SurfaceGrower g(c);
+            ADD_FAILURE() << "accepted " << what;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ErrorCode::kInvalidParameter) << what;
+        }
+    };
+    GrowerConfig c;
+    c.mu = 0;
+    expect_invalid(c, "mu = 0");
+    c.mu = -0.01;
+    expect_invalid(c, "mu < 0");
+    c.mu = std::nan("");
+    expect_invalid(c, "mu = NaN");
+    c = {};
+    c.min_pts = 2;
+    expect_invalid(c, "min_pts = 2");
+    c = {};
+    c.alpha = 1.0;
+    expect_invalid(c, "alpha = 1");
+    c.alpha = 0.5;
+    expect_invalid(c, "alpha < 1");
+    c = {};
+    c.plane_tolerance = -1;
+    expect_invalid(c, "negative tolerance");
+    c = {};
+    c.mu_max = 0.006;
+    expect_invalid(c, "mu_max < mu");
+    c = {};
+    c.threads = -1;
+    expect_invalid(c, "threads < 0");
+    c = {};
+    c.crop.radius = 0;
+    expect_invalid(c, "crop radius 0");
+}
+
+}  // namespace
+}  // namespace surfgrow
