@@ -56,7 +56,8 @@ void check_invariants(const PointCloud& cloud, const GrowerConfig& cfg, const Gr
     EXPECT_EQ(st.surfaces, r.surfaces.size());
     EXPECT_LE(st.registered_grown, st.registered);
     EXPECT_EQ(st.valid_points, st.registered + st.noise_points);
-    EXPECT_EQ(st.homes_tried, st.surfaces + st.rejected_sparse + st.rejected_nonplanar);
+    EXPECT_EQ(st.homes_tried,
+              st.surfaces + st.rejected_sparse + st.rejected_nonplanar + st.rejected_covered);
     std::vector<std::uint32_t> count(r.surfaces.size(), 0);
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         const int32_t l = r.labels[i];

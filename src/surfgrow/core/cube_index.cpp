@@ -46,6 +46,7 @@ CubeIndex::CubeIndex(std::span<const Vec3f> points, double cube_size,
         box.add(points[i].cast<double>());
         ++count;
     }
+    bounds_ = box;
     if (count == 0) {
         x_.assign(kPadding, 0.f);
         y_.assign(kPadding, 0.f);

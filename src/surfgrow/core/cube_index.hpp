@@ -44,6 +44,12 @@ class CubeIndex {
     [[nodiscard]] std::size_t size() const { return original_.size(); }
     [[nodiscard]] std::size_t cube_count() const { return cube_keys_.size(); }
     [[nodiscard]] const Vec3d& origin() const { return origin_; }
+    /// Bounding box of the indexed points (world coordinates); empty if none.
+    [[nodiscard]] const Aabb& bounds() const { return bounds_; }
+    /// A world position in the index's local float frame.
+    [[nodiscard]] Vec3f to_local(const Vec3d& world) const {
+        return (world - origin_).cast<float>();
+    }
 
     /// Sorted local coordinates (world minus origin()); each array has kPadding readable extras.
     [[nodiscard]] const float* xs() const { return x_.data(); }
@@ -108,6 +114,7 @@ class CubeIndex {
     double cube_size_ = 0.0;
     double inv_cube_ = 0.0;
     Vec3d origin_ = Vec3d::Zero();
+    Aabb bounds_;
     Eigen::Vector3i bits_ = Eigen::Vector3i::Zero();
     int shift_x_ = 0;
     int shift_y_ = 0;

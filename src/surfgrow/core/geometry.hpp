@@ -45,14 +45,15 @@ struct Plane {
     return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
 }
 
-/// Angle between two unit vectors in radians, clamped against rounding.
+/// Angle between two vectors in radians, in [0, pi]. atan2 of the cross and dot products keeps
+/// full precision at small angles, where acos(dot) resolves only ~1e-8 rad.
 [[nodiscard]] inline double angle_between(const Vec3d& a, const Vec3d& b) {
-    return std::acos(std::clamp(a.dot(b), -1.0, 1.0));
+    return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
 /// Angle between two unoriented directions (lines), in [0, pi/2].
 [[nodiscard]] inline double axis_angle_between(const Vec3d& a, const Vec3d& b) {
-    return std::acos(std::clamp(std::abs(a.dot(b)), 0.0, 1.0));
+    return std::atan2(a.cross(b).norm(), std::abs(a.dot(b)));
 }
 
 }  // namespace surfgrow

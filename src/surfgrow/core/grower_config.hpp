@@ -29,6 +29,10 @@ struct GrowerConfig {
     /// neighbourhoods on planes at the URG-04LX's range noise and rejects those on a 90-degree
     /// edge.
     double alpha = 4.0;
+    /// A new surface must register at least this many points not yet registered; a home point in
+    /// a small gap between earlier surfaces is left to the leftover pass instead of creating a
+    /// near-duplicate surface. Raises the data reduction at equal registration.
+    int min_new_points = 1;
     /// Largest distance from the fitted plane at which a point is registered; 0 means mu (paper).
     double plane_tolerance = 0.0;
     /// Adaptive radius: where a home point has fewer than min_pts neighbours within mu, retry with

@@ -1,9 +1,8 @@
 // Principal component analysis of a neighbourhood: the plane test of paper eq. (2).
 #pragma once
 
-#include <Eigen/Eigenvalues>
-
 #include "surfgrow/core/geometry.hpp"
+#include "surfgrow/core/symmetric_eigen.hpp"
 
 namespace surfgrow {
 
@@ -28,25 +27,26 @@ struct PlaneFit {
     Vec3d eigenvalues = Vec3d::Zero();  ///< ascending
 };
 
-/// Covariance eigen-decomposition by Eigen's closed-form 3x3 solver (computeDirect), in double.
-/// Requires m.n >= 1.
-[[nodiscard]] inline PlaneFit fit_plane(const Moments& m) {
-    PlaneFit fit;
+/// Covariance of the moments' points (n >= 1).
+[[nodiscard]] inline Mat3d covariance(const Moments& m) {
     const Vec3d mean = m.sum / m.n;
     Mat3d cov = m.sum_sq / m.n - mean * mean.transpose();
-    cov = 0.5 * (cov + cov.transpose());
-    Eigen::SelfAdjointEigenSolver<Mat3d> solver;
-    solver.computeDirect(cov);
-    fit.centroid = mean;
-    fit.eigenvalues = solver.eigenvalues().cwiseMax(0.0);  // ascending; rounding can dip below 0
-    fit.normal = solver.eigenvectors().col(0).normalized();
-    return fit;
+    return 0.5 * (cov + cov.transpose());
+}
+
+/// PCA of the moments' points by the closed-form solver (symmetric_eigen.hpp), in double.
+/// Requires m.n >= 1.
+[[nodiscard]] inline PlaneFit fit_plane(const Moments& m) {
+    const SymmetricEigen3 e = symmetric_eigen(covariance(m));
+    return {m.sum / m.n, e.smallest_vector, e.values.cwiseMax(0.0)};  // rounding can dip below 0
 }
 
 /// Paper eq. (2): the neighbourhood is a plane when min(lambda) < mid(lambda) / alpha.
-/// A line or a single point (mid = 0) is never a plane.
+/// A line or a single point is never a plane: mid(lambda) must stand above rounding noise
+/// (1e-10 of the largest), or collinear points would pass on round-off alone.
 [[nodiscard]] inline bool is_planar(const Vec3d& ascending_eigenvalues, double alpha) {
-    return ascending_eigenvalues[0] * alpha < ascending_eigenvalues[1];
+    const Vec3d& e = ascending_eigenvalues;
+    return e[0] * alpha < e[1] && e[1] > 1e-10 * e[2];
 }
 
 }  // namespace surfgrow

@@ -19,6 +19,14 @@ Moments shifted(const Moments& m, const Vec3d& from, const Vec3d& to) {
     return out;
 }
 
+// What the inner loop needs of a patch, in the pooling index's sorted order (contiguous reads).
+struct Candidate {
+    Vec3d normal;
+    Vec3d centroid;   // index-local
+    double sigma;     // sqrt(lambda_min)
+    Moments moments;  // about the index origin, so pooling is a plain sum
+};
+
 }  // namespace
 
 std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const PoolingConfig& cfg) {
@@ -26,31 +34,48 @@ std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const Po
     if (patches.empty()) return out;
     std::vector<Vec3f> homes(patches.size());
     for (std::size_t k = 0; k < patches.size(); ++k) homes[k] = patches[k].home.cast<float>();
+    // Cubes of the pooling radius over the home points: every candidate is in the 27 around.
     const CubeIndex index(homes, cfg.radius, {}, cfg.threads);
     const auto orig = index.original_indices();
+    std::vector<CubeIndex::Range> table;
+    index.neighbour_table(0, index.cube_count(), table);
+    // Moments about the index origin: at metre scale in double the sums lose ~1e-14 m^2, far
+    // below a patch's spread, and pooling needs no per-pair shift.
+    std::vector<Candidate> cand(index.size());
+    for (std::size_t s = 0; s < index.size(); ++s) {
+        const PoolablePatch& p = patches[orig[s]];
+        cand[s] = {p.normal, p.centroid - index.origin(), std::sqrt(std::max(p.lambda_min, 0.0)),
+                   shifted(p.moments, p.home, index.origin())};
+    }
     const double cos_max = std::cos(cfg.max_angle);
+    const auto r2 = static_cast<float>(cfg.radius * cfg.radius);
 
-#pragma omp parallel for num_threads(std::max(1, cfg.threads)) schedule(dynamic, 256)
-    for (std::size_t k = 0; k < patches.size(); ++k) {
-        const PoolablePatch& a = patches[k];
-        Moments pooled = a.moments;
-        index.for_each_within(a.home, cfg.radius, [&](std::uint32_t s) {
-            const std::size_t j = orig[s];
-            if (j == k) return;
-            const PoolablePatch& b = patches[j];
-            if (std::abs(a.normal.dot(b.normal)) < cos_max) return;
-            const double sigma = std::sqrt(std::max(a.lambda_min, b.lambda_min));
-            const double offset = std::clamp(3.0 * sigma, cfg.min_offset, cfg.max_offset);
-            const Vec3d d = b.centroid - a.centroid;
-            if (std::abs(a.normal.dot(d)) > offset || std::abs(b.normal.dot(d)) > offset) return;
-            const Moments m = shifted(b.moments, b.home, a.home);
-            pooled.n += m.n;
-            pooled.sum += m.sum;
-            pooled.sum_sq += m.sum_sq;
-        });
-        Vec3d n = fit_plane(pooled).normal;
-        if (n.dot(a.normal) < 0) n = -n;
-        out[k] = n;
+#pragma omp parallel for num_threads(std::max(1, cfg.threads)) schedule(dynamic, 64)
+    for (std::size_t c = 0; c < index.cube_count(); ++c) {
+        for (std::uint32_t s = index.cube_begin(c); s < index.cube_end(c); ++s) {
+            const Candidate& a = cand[s];
+            const Vec3f q = index.local_point(s);
+            Moments pooled = a.moments;
+            for (int r = 0; r < 9; ++r) {
+                const CubeIndex::Range run = table[9 * c + static_cast<std::size_t>(r)];
+                for (std::uint32_t t = run.begin; t < run.end; ++t) {
+                    if (t == s || (index.local_point(t) - q).squaredNorm() > r2) continue;
+                    const Candidate& b = cand[t];
+                    if (std::abs(a.normal.dot(b.normal)) < cos_max) continue;
+                    const double offset = std::clamp(3.0 * std::max(a.sigma, b.sigma),
+                                                     cfg.min_offset, cfg.max_offset);
+                    const Vec3d d = b.centroid - a.centroid;
+                    if (std::abs(a.normal.dot(d)) > offset || std::abs(b.normal.dot(d)) > offset)
+                        continue;
+                    pooled.n += b.moments.n;
+                    pooled.sum += b.moments.sum;
+                    pooled.sum_sq += b.moments.sum_sq;
+                }
+            }
+            Vec3d n = fit_plane(pooled).normal;
+            if (n.dot(a.normal) < 0) n = -n;
+            out[orig[s]] = n;
+        }
     }
     return out;
 }

@@ -27,6 +27,8 @@ void validate(const GrowerConfig& c) {
     };
     if (!(c.mu > 0) || !std::isfinite(c.mu))
         fail({"mu must be a positive length, got ", num(c.mu)});
+    if (c.min_new_points < 1)
+        fail({"min-new-points must be at least 1, got ", num(c.min_new_points)});
     if (c.min_pts < 3)
         fail({"min-pts must be at least 3 (a plane needs 3 points), got ", num(c.min_pts)});
     if (!(c.alpha > 1) || !std::isfinite(c.alpha))
@@ -100,8 +102,16 @@ struct GrownSurface {
 };
 
 struct SlabCounters {
-    std::uint64_t tried = 0, sparse = 0, nonplanar = 0, adapted = 0;
+    std::uint64_t tried = 0, sparse = 0, nonplanar = 0, covered = 0, adapted = 0;
 };
+
+/// Undoes register_points for one home: its label back to "unregistered" wherever it was set.
+void unregister_points(std::span<const Range> runs, std::span<std::int32_t> labels,
+                       std::int32_t label) {
+    for (const Range& run : runs)
+        for (std::uint32_t j = run.begin; j < run.end; ++j)
+            if (labels[j] == label) labels[j] = -1;
+}
 
 /// Per-thread scratch reused across slabs: no allocation per home point.
 struct Scratch {
@@ -132,6 +142,7 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
     const auto mu = static_cast<float>(cfg.mu);
     const double max_radius = cfg.max_radius();
     const double tol_per_radius = cfg.tolerance() / cfg.mu;
+    const auto min_new = static_cast<std::uint32_t>(std::max(1, cfg.min_new_points));
     for (const std::uint32_t home : s.order) {
         if (ctx.labels[home] >= 0) continue;
         ++counters.tried;
@@ -162,8 +173,12 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
         const std::uint32_t registered = register_points(
             index, runs, h, static_cast<float>(radius), fit.normal.cast<float>(),
             fit.centroid.cast<float>(), tol, ctx.labels, static_cast<std::int32_t>(home));
-        if (registered == 0) {  // possible only with a tolerance below the radius
-            ++counters.nonplanar;
+        if (registered < min_new) {
+            // The home sits in a gap between earlier surfaces: a new surface would duplicate
+            // them. Undo; the leftover pass gives these points to the surface they fit best.
+            if (registered > 0)
+                unregister_points(runs, ctx.labels, static_cast<std::int32_t>(home));
+            ++counters.covered;
             continue;
         }
         if (radius > cfg.mu) ++counters.adapted;
@@ -184,19 +199,21 @@ void for_each_slab_of_colour(std::size_t slab_count, int colour, int threads, F&
 
 /// Leftover pass: for each unregistered point, the neighbouring surface whose plane it fits best.
 /// Reads only labels fixed by growing and writes to `attach`, so slabs can run in any order.
+/// Leftovers are a few per cent of the points: their cubes' runs are looked up one cube at a time.
 void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& slab,
                  std::span<const std::int32_t> labels, const std::vector<Surface>& surfaces,
                  std::span<const double> tolerance, Scratch& s,
                  std::vector<std::pair<std::uint32_t, std::int32_t>>& attach) {
-    index.neighbour_table(slab.cube_begin, slab.cube_end, s.table);
     const auto r2 = static_cast<float>(cfg.mu * cfg.mu);
     const double far_radius = cfg.max_radius();
     const float* X = index.xs();
     const float* Y = index.ys();
     const float* Z = index.zs();
     for (std::uint32_t c = slab.cube_begin; c < slab.cube_end; ++c) {
+        s.runs.clear();
         for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
             if (labels[i] >= 0) continue;
+            if (s.runs.empty()) index.column_ranges(index.cube_coords(c), 1, s.runs);
             const Vec3f p = index.local_point(i);
             const Vec3d pw = index.origin() + p.cast<double>();
             std::int32_t best = -1;
@@ -211,8 +228,7 @@ void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& sl
                     best_dist = d;
                 }
             };
-            for (int k = 0; k < 9; ++k) {
-                const Range& run = s.table[9 * (c - slab.cube_begin) + static_cast<std::size_t>(k)];
+            for (const Range& run : s.runs) {
                 for (std::uint32_t j = run.begin; j < run.end; ++j) {
                     if (labels[j] < 0) continue;
                     const float dx = X[j] - p.x(), dy = Y[j] - p.y(), dz = Z[j] - p.z();
@@ -227,6 +243,26 @@ void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& sl
             if (best >= 0) attach.emplace_back(i, best);
         }
     }
+}
+
+/// A surface's plane in the index's float frame, for per-point passes.
+struct LocalPlane {
+    Vec3f normal;
+    float offset;     // normal . centroid (local)
+    float tolerance;  // registration tolerance of this surface
+    [[nodiscard]] float distance(const Vec3f& p) const { return std::abs(normal.dot(p) - offset); }
+    [[nodiscard]] bool holds(const Vec3f& p) const { return distance(p) <= tolerance; }
+};
+
+std::vector<LocalPlane> local_planes(const CubeIndex& index, const std::vector<Surface>& surfaces,
+                                     std::span<const double> tolerance) {
+    std::vector<LocalPlane> planes(surfaces.size());
+    for (std::size_t k = 0; k < surfaces.size(); ++k) {
+        const Vec3f n = surfaces[k].normal.cast<float>();
+        planes[k] = {n, n.dot(index.to_local(surfaces[k].centroid)),
+                     static_cast<float>(tolerance[k])};
+    }
+    return planes;
 }
 
 /// Chooses where normals should face and where ranges are measured from.
@@ -273,8 +309,6 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     // --- Stage 1: the cube index over valid points inside the crop.
     auto t0 = Clock::now();
     std::vector<std::uint8_t> include;
-    for (const Vec3f& p : cloud.points) st.invalid_points += is_finite(p) ? 0 : 1;
-    Aabb valid_box;  // of the points grown, for choosing the orientation rule
     if (cfg.crop.active()) {
         include.assign(n_in, 1);
         const Vec3d center = cfg.crop.center   ? *cfg.crop.center
@@ -291,18 +325,14 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
             if (!inside) {
                 include[i] = 0;
                 ++st.cropped_points;
-            } else {
-                valid_box.add(p);
             }
         }
-    } else {
-        for (const Vec3f& p : cloud.points)
-            if (is_finite(p)) valid_box.add(p.cast<double>());
     }
     const CubeIndex index(cloud.points, cfg.mu, include, threads);
     include = {};
     const std::size_t n = index.size();
     st.valid_points = n;
+    st.invalid_points = n_in - n - st.cropped_points;
     st.seconds.index = seconds_since(t0);
     report("index", 1.0);
 
@@ -327,14 +357,18 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     }
     // Surface ids follow the home points' sorted order: slab order, then home order within a slab.
     std::vector<GrownSurface> all;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> order;  // (home, position): cheap to sort
     for (std::size_t s = 0; s < slabs.size(); ++s) {
-        std::sort(grown[s].begin(), grown[s].end(),
-                  [](const GrownSurface& a, const GrownSurface& b) { return a.home < b.home; });
-        all.insert(all.end(), grown[s].begin(), grown[s].end());
+        order.resize(grown[s].size());
+        for (std::size_t k = 0; k < grown[s].size(); ++k)
+            order[k] = {grown[s][k].home, static_cast<std::uint32_t>(k)};
+        std::sort(order.begin(), order.end());
+        for (const auto& [home, k] : order) all.push_back(grown[s][k]);
         grown[s] = {};
         st.homes_tried += counters[s].tried;
         st.rejected_sparse += counters[s].sparse;
         st.rejected_nonplanar += counters[s].nonplanar;
+        st.rejected_covered += counters[s].covered;
         st.adapted_surfaces += counters[s].adapted;
     }
     {
@@ -377,14 +411,13 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         // A reported plane must hold its members: release any the refined plane no longer fits
         // (rare: points at the tolerance's edge); the leftover pass may re-attach them.
         std::uint64_t released = 0;
+        std::vector<LocalPlane> planes = local_planes(index, result.surfaces, tolerance);
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : released)
         for (std::size_t i = 0; i < n; ++i) {
             const std::int32_t l = labels[i];
             if (l < 0) continue;
-            const Surface& s = result.surfaces[static_cast<std::size_t>(l)];
-            const double d = std::abs(
-                s.normal.dot(index.world_point(static_cast<std::uint32_t>(i)) - s.centroid));
-            if (d > tolerance[static_cast<std::size_t>(l)]) {
+            if (!planes[static_cast<std::size_t>(l)].holds(
+                    index.local_point(static_cast<std::uint32_t>(i)))) {
                 labels[i] = -1;
                 ++released;
             }
@@ -411,30 +444,41 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
 
     // --- Stage 4: member statistics, orientation, labels in input order, range bands.
     t0 = Clock::now();
-    std::vector<double> residual_sum(all.size(), 0.0);
     const auto orig = index.original_indices();
     result.labels.assign(n_in, -1);
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::int32_t l = labels[i];
-        result.labels[orig[i]] = l;
-        if (l < 0) continue;
-        ++st.registered;
-        Surface& s = result.surfaces[static_cast<std::size_t>(l)];
-        const Vec3d p = index.world_point(static_cast<std::uint32_t>(i));
-        ++s.point_count;
-        s.bounds.add(p);
-        residual_sum[static_cast<std::size_t>(l)] += std::abs(s.normal.dot(p - s.centroid));
-    }
-    for (std::size_t k = 0; k < all.size(); ++k) {
-        Surface& s = result.surfaces[k];
-        if (s.point_count) s.mean_residual = residual_sum[k] / s.point_count;
+    {
+        // Per surface, in the index's float frame: members, bounds, residual sum.
+        const std::vector<LocalPlane> planes = local_planes(index, result.surfaces, tolerance);
+        std::vector<Vec3f> lo(all.size(), Vec3f::Constant(std::numeric_limits<float>::max()));
+        std::vector<Vec3f> hi(all.size(), Vec3f::Constant(std::numeric_limits<float>::lowest()));
+        std::vector<double> residual_sum(all.size(), 0.0);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::int32_t l = labels[i];
+            result.labels[orig[i]] = l;
+            if (l < 0) continue;
+            const auto k = static_cast<std::size_t>(l);
+            const Vec3f p = index.local_point(static_cast<std::uint32_t>(i));
+            ++result.surfaces[k].point_count;
+            lo[k] = lo[k].cwiseMin(p);
+            hi[k] = hi[k].cwiseMax(p);
+            residual_sum[k] += static_cast<double>(planes[k].distance(p));
+        }
+        for (std::size_t k = 0; k < all.size(); ++k) {
+            Surface& s = result.surfaces[k];
+            st.registered += s.point_count;
+            if (s.point_count == 0) continue;
+            s.mean_residual = residual_sum[k] / s.point_count;
+            s.bounds.add(index.origin() + lo[k].cast<double>());
+            s.bounds.add(index.origin() + hi[k].cast<double>());
+        }
     }
     st.noise_points = st.valid_points - st.registered;
 
-    const Orientation orient = choose_orientation(cloud, cfg, valid_box);
+    const Orientation orient = choose_orientation(cloud, cfg, index.bounds());
     st.orientation = orient.source;
+    const bool per_scan = orient.source == OrientationSource::kScanOrigins;
     auto origin_of = [&](std::uint32_t sorted) -> Vec3d {
-        if (orient.source == OrientationSource::kScanOrigins) {
+        if (per_scan) {
             const std::uint32_t scan = cloud.scan_index[orig[sorted]];
             if (scan < cloud.scan_origins.size()) return cloud.scan_origins[scan];
         }
@@ -450,22 +494,33 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     st.range_known = orient.source != OrientationSource::kUp;
     st.range_origin = orient.origin;
     if (st.range_known) {
+        std::vector<Vec3f> origins;  // local frame: one, or one per scan
+        if (per_scan)
+            for (const Vec3d& o : cloud.scan_origins) origins.push_back(index.to_local(o));
+        else
+            origins.push_back(index.to_local(orient.origin));
+        const auto inv_band = static_cast<float>(1.0 / cfg.range_band);
+        std::vector<RangeBand> bands;
         for (std::size_t i = 0; i < n; ++i) {
-            const double r = (index.world_point(static_cast<std::uint32_t>(i)) -
-                              origin_of(static_cast<std::uint32_t>(i)))
-                                 .norm();
+            std::uint32_t o = 0;
+            if (per_scan) {
+                o = cloud.scan_index[orig[i]];
+                if (o >= origins.size()) o = 0;
+            }
+            const float r = (index.local_point(static_cast<std::uint32_t>(i)) - origins[o]).norm();
             const auto band =
-                static_cast<std::size_t>(std::min(r / cfg.range_band, double(kMaxRangeBands - 1)));
-            if (band >= st.range_bands.size()) st.range_bands.resize(band + 1);
-            ++st.range_bands[band].points;
-            st.range_bands[band].registered += labels[i] >= 0 ? 1 : 0;
+                static_cast<std::size_t>(std::min(r * inv_band, float(kMaxRangeBands - 1)));
+            if (band >= bands.size()) bands.resize(band + 1);
+            ++bands[band].points;
+            bands[band].registered += labels[i] >= 0 ? 1 : 0;
         }
-        for (std::size_t b = 0; b < st.range_bands.size(); ++b) {
-            st.range_bands[b].from = double(b) * cfg.range_band;
-            st.range_bands[b].to = double(b + 1) * cfg.range_band;
+        for (std::size_t b = 0; b < bands.size(); ++b) {
+            bands[b].from = double(b) * cfg.range_band;
+            bands[b].to = double(b + 1) * cfg.range_band;
         }
-        if (st.range_bands.size() == kMaxRangeBands)  // the last band is open-ended
-            st.range_bands.back().to = std::numeric_limits<double>::infinity();
+        if (bands.size() == kMaxRangeBands)  // the last band is open-ended
+            bands.back().to = std::numeric_limits<double>::infinity();
+        st.range_bands = std::move(bands);
     }
     st.seconds.finish = seconds_since(t0);
     report("finish", 1.0);
