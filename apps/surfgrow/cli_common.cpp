@@ -93,37 +93,43 @@ Vec3d parse_vec3(std::string_view text, std::string_view option) {
     return v;
 }
 
-Vec3d parse_vec3_length_m(std::string_view text, std::string_view option) {
-    std::array<std::string_view, 3> parts;
+std::vector<double> parse_lengths_m(std::string_view text, std::string_view option, std::size_t count) {
+    std::vector<std::string_view> parts;
     std::string_view rest = text;
-    for (int i = 0; i < 3; ++i) {
+    while (true) {
         const auto comma = rest.find(',');
-        if ((i < 2) == (comma == std::string_view::npos))
-            usage_error(option, {"'", text, "' is not x,y,z"});
-        parts[static_cast<std::size_t>(i)] = trim(i < 2 ? rest.substr(0, comma) : rest);
-        if (i < 2) rest.remove_prefix(comma + 1);
+        parts.push_back(trim(rest.substr(0, comma)));
+        if (comma == std::string_view::npos) break;
+        rest.remove_prefix(comma + 1);
     }
-    // A unit on the last component alone applies to all three ("1,2,0.5m").
+    const std::string expected = std::to_string(count) + " comma-separated lengths (e.g. " +
+                                 (count == 3 ? std::string("0,0,1.2m") : std::string("-1,-1,0,1,1,2m")) + ")";
+    if (parts.size() != count) usage_error(option, {"'", text, "' is not ", expected});
+    // A unit on the last component alone applies to every component without one ("1,2,0.5m").
     double last_scale = 0;
     {
         double value = 0;
         std::string_view unit;
-        if (split_number(parts[2], value, unit) && !unit.empty() && !unit_scale(unit, last_scale))
+        if (split_number(parts.back(), value, unit) && !unit.empty() && !unit_scale(unit, last_scale))
             usage_error(option, {"unknown length unit '", unit, "' (use m, cm, mm)"});
     }
-    Vec3d v;
-    for (int i = 0; i < 3; ++i) {
+    std::vector<double> out;
+    for (const std::string_view part : parts) {
         double value = 0;
         std::string_view unit;
-        if (!split_number(parts[static_cast<std::size_t>(i)], value, unit))
-            usage_error(option, {"'", text, "' is not x,y,z with units (e.g. 0,0,1.2m)"});
+        if (!split_number(part, value, unit)) usage_error(option, {"'", text, "' is not ", expected});
         double scale = last_scale;
         if (!unit.empty() && !unit_scale(unit, scale))
             usage_error(option, {"unknown length unit '", unit, "' (use m, cm, mm)"});
-        if (scale == 0) usage_error(option, {"'", text, "' has no unit; write e.g. 0,0,1.2m"});
-        v[i] = value * scale;
+        if (scale == 0) usage_error(option, {"'", text, "' has no unit; write e.g. ", text, "m"});
+        out.push_back(value * scale);
     }
-    return v;
+    return out;
+}
+
+Vec3d parse_vec3_length_m(std::string_view text, std::string_view option) {
+    const std::vector<double> v = parse_lengths_m(text, option, 3);
+    return {v[0], v[1], v[2]};
 }
 
 std::string format_length(double metres) {

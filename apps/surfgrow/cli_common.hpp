@@ -3,6 +3,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "surfgrow/core/geometry.hpp"
 
@@ -22,6 +23,10 @@ Vec3d parse_vec3(std::string_view text, std::string_view option);
 /// Parses "x,y,z" where each number may carry a length unit ("1m,2m,0.5m" or "1,2,0.5m"
 /// with the unit on the last); returns metres. A vector with no unit at all is refused.
 Vec3d parse_vec3_length_m(std::string_view text, std::string_view option);
+
+/// Parses `count` comma-separated lengths ("-1,-1,0,1,1,2m": a unit on the last applies to all
+/// without their own); returns metres. Throws Error(kUsage) naming `option`.
+std::vector<double> parse_lengths_m(std::string_view text, std::string_view option, std::size_t count);
 
 /// "12 mm", "1.5 m": a length in metres shown in the unit a person would use.
 std::string format_length(double metres);

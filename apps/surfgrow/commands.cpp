@@ -2,8 +2,8 @@
 
 namespace surfgrow::cli {
 
-void add_all_commands(CLI::App& app) {
-    (void)app;
-}
+void add_grow_command(CLI::App& app);
+
+void add_all_commands(CLI::App& app) { add_grow_command(app); }
 
 }  // namespace surfgrow::cli

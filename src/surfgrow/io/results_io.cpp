@@ -1,0 +1,339 @@
+#include "surfgrow/io/results_io.hpp"
+
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/text.hpp"
+
+namespace surfgrow::io {
+
+namespace {
+
+// Shortest round-trip decimal; JSON has no infinity or NaN, so those become null.
+void put_number(std::string& out, double v) {
+    if (!std::isfinite(v)) {
+        out += "null";
+        return;
+    }
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    out.append(buf, r.ptr);
+}
+
+void put_vec(std::string& out, const Vec3d& v) {
+    out += '[';
+    for (int a = 0; a < 3; ++a) {
+        if (a) out += ',';
+        put_number(out, v[a]);
+    }
+    out += ']';
+}
+
+template <class T>
+void put_raw(std::ostream& out, T value) {
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &value, sizeof(T));  // little-endian hosts only (checked below)
+    out.write(bytes, sizeof(T));
+}
+
+static_assert(std::endian::native == std::endian::little, "binary writers assume a little-endian host");
+
+nlohmann::json parameters_json(const GrowerConfig& c) {
+    nlohmann::json p = {
+        {"mu", c.mu},
+        {"min_pts", c.min_pts},
+        {"alpha", c.alpha},
+        {"plane_tolerance", c.tolerance()},
+        {"mu_max", c.max_radius()},
+        {"min_new_points", c.min_new_points},
+        {"pool_angle_deg", c.pool_angle_deg},
+        {"pool_radius", c.pool_radius > 0 ? c.pool_radius : 2 * c.mu},
+        {"attach_leftovers", c.attach_leftovers},
+        {"seed", c.seed},
+        {"range_band", c.range_band},
+    };
+    if (c.viewpoint) p["viewpoint"] = {c.viewpoint->x(), c.viewpoint->y(), c.viewpoint->z()};
+    if (c.crop.box)
+        p["crop_box"] = {{"min", {c.crop.box->min.x(), c.crop.box->min.y(), c.crop.box->min.z()}},
+                         {"max", {c.crop.box->max.x(), c.crop.box->max.y(), c.crop.box->max.z()}}};
+    if (c.crop.radius) p["crop_radius"] = *c.crop.radius;
+    if (c.crop.center) p["crop_center"] = {c.crop.center->x(), c.crop.center->y(), c.crop.center->z()};
+    return p;
+}
+
+nlohmann::json summary_json(const GrowStats& s) {
+    nlohmann::json bands = nlohmann::json::array();
+    for (const RangeBand& b : s.range_bands) {
+        bands.push_back({{"from", b.from},
+                         {"to", std::isfinite(b.to) ? nlohmann::json(b.to) : nlohmann::json(nullptr)},
+                         {"points", b.points},
+                         {"registered", b.registered},
+                         {"registered_fraction", b.points ? double(b.registered) / double(b.points) : 0.0}});
+    }
+    return {
+        {"points_in", s.points_in},
+        {"invalid_points", s.invalid_points},
+        {"cropped_points", s.cropped_points},
+        {"valid_points", s.valid_points},
+        {"surfaces", s.surfaces},
+        {"registered", s.registered},
+        {"registered_fraction", s.registered_fraction()},
+        {"registered_grown", s.registered_grown},
+        {"registered_grown_fraction", s.registered_grown_fraction()},
+        {"homes_tried", s.homes_tried},
+        {"rejected_sparse", s.rejected_sparse},
+        {"rejected_nonplanar", s.rejected_nonplanar},
+        {"rejected_covered", s.rejected_covered},
+        {"released_by_refinement", s.released_by_refinement},
+        {"adapted_surfaces", s.adapted_surfaces},
+        {"noise_points", s.noise_points},
+        {"data_reduction", s.data_reduction()},
+        {"orientation", orientation_name(s.orientation)},
+        {"range_origin", s.range_known ? nlohmann::json{s.range_origin.x(), s.range_origin.y(), s.range_origin.z()}
+                                       : nlohmann::json(nullptr)},
+        {"range_bands", bands},
+    };
+}
+
+[[noreturn]] void malformed(const std::filesystem::path& file, std::string_view what) {
+    throw Error(ErrorCode::kMalformedInput, cat({file.string(), ": ", what}));
+}
+
+Vec3d vec_of(const nlohmann::json& j) {
+    if (!j.is_array() || j.size() != 3) throw std::invalid_argument("expected [x, y, z]");
+    return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+}  // namespace
+
+const char* orientation_name(OrientationSource source) {
+    switch (source) {
+        case OrientationSource::kScanOrigins: return "scan_origins";
+        case OrientationSource::kViewpoint: return "viewpoint";
+        case OrientationSource::kFrameOrigin: return "frame_origin";
+        case OrientationSource::kUp: return "up";
+    }
+    return "up";
+}
+
+void write_surfaces_ply(std::ostream& out, std::span<const Surface> surfaces, const ResultMeta& meta) {
+    const bool wide = meta.offset != Vec3d::Zero();  // keep georeferenced precision
+    const char* pos = wide ? "double" : "float";
+    out << "ply\nformat binary_little_endian 1.0\n"
+        << "comment surfgrow surfaces: one vertex per surface at its home point, with its normal\n"
+        << "comment units " << meta.units << "\n"
+        << "element vertex " << surfaces.size() << "\n"
+        << "property " << pos << " x\nproperty " << pos << " y\nproperty " << pos << " z\n"
+        << "property float nx\nproperty float ny\nproperty float nz\n"
+        << "property float radius\nproperty double plane_offset\n"
+        << "property uint point_count\nproperty float mean_residual\nend_header\n";
+    for (const Surface& s : surfaces) {
+        const Vec3d home = s.home + meta.offset;
+        for (int a = 0; a < 3; ++a) {
+            if (wide)
+                put_raw(out, home[a]);
+            else
+                put_raw(out, static_cast<float>(home[a]));
+        }
+        for (int a = 0; a < 3; ++a) put_raw(out, static_cast<float>(s.normal[a]));
+        put_raw(out, static_cast<float>(s.radius));
+        put_raw(out, -s.normal.dot(s.centroid + meta.offset));
+        put_raw(out, s.point_count);
+        put_raw(out, static_cast<float>(s.mean_residual));
+    }
+}
+
+void write_result_json(std::ostream& out, const GrowResult& result, const GrowerConfig& config,
+                       const ResultMeta& meta) {
+    const nlohmann::json head = {
+        {"format", "surfgrow-result"},
+        {"version", 1},
+        {"units", meta.units},
+        {"offset", {meta.offset.x(), meta.offset.y(), meta.offset.z()}},
+        {"input", meta.input},
+        {"parameters", parameters_json(config)},
+        {"summary", summary_json(result.stats)},
+    };
+    // The head through nlohmann, the (possibly 100 000) surfaces streamed by hand.
+    std::string text = head.dump(1);
+    text.pop_back();  // the closing brace; the surfaces array goes in before it
+    while (!text.empty() && text.back() == '\n') text.pop_back();
+    text += ",\n \"surfaces\": [";
+    std::string row;
+    for (std::size_t k = 0; k < result.surfaces.size(); ++k) {
+        const Surface& s = result.surfaces[k];
+        const Vec3d home = s.home + meta.offset, centroid = s.centroid + meta.offset;
+        row.clear();
+        row += k ? ",\n  {\"id\":" : "\n  {\"id\":";
+        row += std::to_string(k);
+        row += ",\"plane\":[";
+        for (int a = 0; a < 3; ++a) {
+            put_number(row, s.normal[a]);
+            row += ',';
+        }
+        put_number(row, -s.normal.dot(centroid));
+        row += "],\"normal\":";
+        put_vec(row, s.normal);
+        row += ",\"home\":";
+        put_vec(row, home);
+        row += ",\"centroid\":";
+        put_vec(row, centroid);
+        row += ",\"eigenvalues\":";
+        put_vec(row, s.eigenvalues);
+        row += ",\"radius\":";
+        put_number(row, s.radius);
+        row += ",\"neighbours\":";
+        row += std::to_string(s.neighbours);
+        row += ",\"points\":";
+        row += std::to_string(s.point_count);
+        row += ",\"mean_residual\":";
+        put_number(row, s.mean_residual);
+        row += ",\"bounds\":{\"min\":";
+        put_vec(row, s.bounds.empty() ? home : Vec3d(s.bounds.min + meta.offset));
+        row += ",\"max\":";
+        put_vec(row, s.bounds.empty() ? home : Vec3d(s.bounds.max + meta.offset));
+        row += "}}";
+        text += row;
+        if (text.size() > (1u << 20)) {
+            out << text;
+            text.clear();
+        }
+    }
+    text += result.surfaces.empty() ? "]\n}\n" : "\n ]\n}\n";
+    out << text;
+}
+
+void write_surfaces_csv(std::ostream& out, std::span<const Surface> surfaces, const ResultMeta& meta) {
+    std::string text =
+        "id,home_x,home_y,home_z,normal_x,normal_y,normal_z,plane_d,radius,points,mean_residual,"
+        "centroid_x,centroid_y,centroid_z,lambda_min,lambda_mid,lambda_max\n";
+    for (std::size_t k = 0; k < surfaces.size(); ++k) {
+        const Surface& s = surfaces[k];
+        const Vec3d home = s.home + meta.offset, centroid = s.centroid + meta.offset;
+        text += std::to_string(k);
+        auto field = [&](double v) {
+            text += ',';
+            put_number(text, v);
+        };
+        for (int a = 0; a < 3; ++a) field(home[a]);
+        for (int a = 0; a < 3; ++a) field(s.normal[a]);
+        field(-s.normal.dot(centroid));
+        field(s.radius);
+        text += ',';
+        text += std::to_string(s.point_count);
+        field(s.mean_residual);
+        for (int a = 0; a < 3; ++a) field(centroid[a]);
+        for (int a = 0; a < 3; ++a) field(s.eigenvalues[a]);
+        text += '\n';
+        if (text.size() > (1u << 20)) {
+            out << text;
+            text.clear();
+        }
+    }
+    out << text;
+}
+
+void write_labels_txt(std::ostream& out, std::span<const std::int32_t> labels) {
+    std::string text;
+    text.reserve(std::min<std::size_t>(labels.size(), 1u << 18) * 7);
+    char buf[16];
+    for (const std::int32_t l : labels) {
+        const auto r = std::to_chars(buf, buf + sizeof buf, l);
+        text.append(buf, r.ptr);
+        text += '\n';
+        if (text.size() > (1u << 20)) {
+            out << text;
+            text.clear();
+        }
+    }
+    out << text;
+}
+
+StoredResult read_result_json(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw Error(ErrorCode::kCannotOpen, cat({"cannot open ", file.string(), " (is this a surfgrow result?)"}));
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+        malformed(file, cat({"not valid JSON: ", e.what()}));
+    }
+    StoredResult r;
+    try {
+        if (j.value("format", "") != "surfgrow-result") malformed(file, "not a surfgrow result (no \"format\": \"surfgrow-result\")");
+        r.meta.units = j.at("units").get<std::string>();
+        r.meta.offset = vec_of(j.at("offset"));
+        r.meta.input = j.value("input", "");
+        const auto& p = j.at("parameters");
+        r.config.mu = p.at("mu").get<double>();
+        r.config.min_pts = p.at("min_pts").get<int>();
+        r.config.alpha = p.at("alpha").get<double>();
+        r.config.plane_tolerance = p.at("plane_tolerance").get<double>();
+        r.config.mu_max = p.at("mu_max").get<double>();
+        r.config.seed = p.at("seed").get<std::uint64_t>();
+        const auto& s = j.at("summary");
+        r.stats.points_in = s.at("points_in").get<std::uint64_t>();
+        r.stats.valid_points = s.at("valid_points").get<std::uint64_t>();
+        r.stats.invalid_points = s.at("invalid_points").get<std::uint64_t>();
+        r.stats.cropped_points = s.at("cropped_points").get<std::uint64_t>();
+        r.stats.surfaces = s.at("surfaces").get<std::uint64_t>();
+        r.stats.registered = s.at("registered").get<std::uint64_t>();
+        r.stats.registered_grown = s.at("registered_grown").get<std::uint64_t>();
+        r.stats.noise_points = s.at("noise_points").get<std::uint64_t>();
+        for (const auto& js : j.at("surfaces")) {
+            Surface surf;
+            surf.normal = vec_of(js.at("normal"));
+            surf.home = vec_of(js.at("home")) - r.meta.offset;
+            surf.centroid = vec_of(js.at("centroid")) - r.meta.offset;
+            surf.eigenvalues = vec_of(js.at("eigenvalues"));
+            surf.radius = js.at("radius").get<double>();
+            surf.neighbours = js.at("neighbours").get<std::uint32_t>();
+            surf.point_count = js.at("points").get<std::uint32_t>();
+            surf.mean_residual = js.at("mean_residual").get<double>();
+            surf.bounds.add(vec_of(js.at("bounds").at("min")) - r.meta.offset);
+            surf.bounds.add(vec_of(js.at("bounds").at("max")) - r.meta.offset);
+            if (!surf.normal.allFinite() || std::abs(surf.normal.norm() - 1.0) > 1e-6 || !surf.home.allFinite())
+                malformed(file, cat({"surface ", std::to_string(r.surfaces.size()), " has a bad normal or home point"}));
+            r.surfaces.push_back(surf);
+        }
+        if (r.surfaces.size() != r.stats.surfaces)
+            malformed(file, cat({"summary says ", std::to_string(r.stats.surfaces), " surfaces but ",
+                                 std::to_string(r.surfaces.size()), " are listed"}));
+    } catch (const nlohmann::json::exception& e) {
+        malformed(file, cat({"missing or mistyped field: ", e.what()}));
+    } catch (const std::invalid_argument& e) {
+        malformed(file, e.what());
+    }
+    return r;
+}
+
+std::vector<std::int32_t> read_labels_txt(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw Error(ErrorCode::kCannotOpen, cat({"cannot open ", file.string()}));
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string text = ss.str();
+    std::vector<std::int32_t> labels;
+    const char* p = text.data();
+    const char* end = p + text.size();
+    std::size_t line = 1;
+    while (p < end) {
+        std::int32_t v = 0;
+        const auto r = std::from_chars(p, end, v);
+        if (r.ec != std::errc() || v < -1 || (r.ptr < end && *r.ptr != '\n'))
+            malformed(file, cat({"line ", std::to_string(line), " is not a surface id (an integer >= -1)"}));
+        labels.push_back(v);
+        p = r.ptr < end ? r.ptr + 1 : r.ptr;
+        ++line;
+    }
+    return labels;
+}
+
+}  // namespace surfgrow::io

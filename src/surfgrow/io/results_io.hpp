@@ -1,0 +1,58 @@
+// The files `surfgrow grow` writes and later commands read back: surfaces, labels, run record.
+#pragma once
+
+#include <filesystem>
+#include <ostream>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "surfgrow/core/grow_result.hpp"
+#include "surfgrow/core/grower_config.hpp"
+
+namespace surfgrow::io {
+
+/// What a result needs besides the algorithm's output to be read correctly later.
+struct ResultMeta {
+    std::string units = "m";         ///< the cloud's length unit, which every length is in
+    Vec3d offset = Vec3d::Zero();    ///< PointCloud::offset: added to every position written
+    std::string input;               ///< the input file's name, for the record
+};
+
+/// surfaces.ply: one vertex per surface at its home point with its unit normal (nx, ny, nz), so
+/// Open3D, PCL and CloudCompare open it as a point cloud with normals; extra properties radius,
+/// plane_offset (d in n.x + d = 0), point_count and mean_residual. Binary little-endian; positions
+/// in double when the cloud had an offset (georeferenced), float otherwise.
+void write_surfaces_ply(std::ostream& out, std::span<const Surface> surfaces, const ResultMeta& meta);
+
+/// surfaces.json: parameters, the summary statistics, and every surface (plane, normal, home
+/// point, centroid, eigenvalues, radius, bounds, members). Deterministic: no timings, no thread
+/// count, numbers in shortest round-trip form.
+void write_result_json(std::ostream& out, const GrowResult& result, const GrowerConfig& config,
+                       const ResultMeta& meta);
+
+/// surfaces.csv: the same surfaces as one row each, for spreadsheets and robot programs.
+void write_surfaces_csv(std::ostream& out, std::span<const Surface> surfaces, const ResultMeta& meta);
+
+/// labels.txt: the surface id of every input point (-1 if unregistered), one per line, input order.
+void write_labels_txt(std::ostream& out, std::span<const std::int32_t> labels);
+
+/// A result read back from a folder written by `surfgrow grow`.
+struct StoredResult {
+    std::vector<Surface> surfaces;  ///< positions relative to meta.offset, as when grown
+    GrowStats stats;                ///< without timings
+    GrowerConfig config;            ///< the parameters used (lengths in the cloud's units)
+    ResultMeta meta;
+};
+
+/// Reads surfaces.json. Throws Error(kCannotOpen) if missing, Error(kMalformedInput) if it is not
+/// a surfgrow result.
+[[nodiscard]] StoredResult read_result_json(const std::filesystem::path& file);
+
+/// Reads labels.txt. Throws Error(kCannotOpen / kMalformedInput).
+[[nodiscard]] std::vector<std::int32_t> read_labels_txt(const std::filesystem::path& file);
+
+/// Name of an OrientationSource as written in surfaces.json.
+[[nodiscard]] const char* orientation_name(OrientationSource source);
+
+}  // namespace surfgrow::io

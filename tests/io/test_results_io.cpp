@@ -1,0 +1,189 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "support/test_support.hpp"
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/surface_grower.hpp"
+#include "surfgrow/io/atomic_output.hpp"
+#include "surfgrow/io/results_io.hpp"
+
+namespace surfgrow::io {
+namespace {
+
+GrowResult small_result(const GrowerConfig& cfg) {
+    PointCloud cloud;
+    std::mt19937_64 rng(1);
+    for (const auto& f : test::box_faces({0, 0, 0}, {0.2, 0.15, 0.1})) test::sample_rect(f, 0.005, 0.3, 0.001, rng, cloud.points);
+    cloud.points.push_back(Vec3f::Constant(std::nanf("")));
+    return grow_surfaces(cloud, cfg);
+}
+
+TEST(ResultsIo, JsonRoundTripKeepsSurfacesAndSummary) {
+    GrowerConfig cfg;
+    cfg.seed = 7;
+    const GrowResult r = small_result(cfg);
+    ASSERT_GT(r.surfaces.size(), 10u);
+    ResultMeta meta;
+    meta.units = "m";
+    meta.offset = Vec3d(1000, -2000, 5);
+    meta.input = "box.ply";
+    test::TempDir dir;
+    write_atomically(dir / "surfaces.json", [&](std::ostream& o) { write_result_json(o, r, cfg, meta); });
+    const StoredResult back = read_result_json(dir / "surfaces.json");
+    EXPECT_EQ(back.meta.units, "m");
+    EXPECT_EQ(back.meta.offset, meta.offset);
+    EXPECT_EQ(back.meta.input, "box.ply");
+    EXPECT_EQ(back.config.mu, cfg.mu);
+    EXPECT_EQ(back.config.seed, 7u);
+    EXPECT_EQ(back.stats.points_in, r.stats.points_in);
+    EXPECT_EQ(back.stats.invalid_points, 1u);
+    EXPECT_EQ(back.stats.registered, r.stats.registered);
+    ASSERT_EQ(back.surfaces.size(), r.surfaces.size());
+    for (std::size_t k = 0; k < r.surfaces.size(); ++k) {
+        const Surface &a = r.surfaces[k], &b = back.surfaces[k];
+        // Shortest round-trip decimals: exact after adding and removing the offset (to rounding).
+        EXPECT_LT((a.home - b.home).norm(), 1e-9);
+        EXPECT_LT((a.centroid - b.centroid).norm(), 1e-9);
+        EXPECT_EQ(a.normal, b.normal);
+        EXPECT_EQ(a.eigenvalues, b.eigenvalues);
+        EXPECT_EQ(a.point_count, b.point_count);
+        EXPECT_EQ(a.radius, b.radius);
+    }
+}
+
+TEST(ResultsIo, SameResultSameBytes) {
+    const GrowerConfig cfg;
+    const GrowResult r = small_result(cfg);
+    std::ostringstream a, b;
+    write_result_json(a, r, cfg, {});
+    write_result_json(b, small_result(cfg), cfg, {});
+    EXPECT_EQ(a.str(), b.str());
+    EXPECT_EQ(a.str().find("seconds"), std::string::npos);  // timings live in run.json
+}
+
+TEST(ResultsIo, SurfacesPlyHeaderAndSize) {
+    const GrowerConfig cfg;
+    const GrowResult r = small_result(cfg);
+    std::ostringstream out;
+    write_surfaces_ply(out, r.surfaces, {});
+    const std::string s = out.str();
+    const auto end = s.find("end_header\n");
+    ASSERT_NE(end, std::string::npos);
+    EXPECT_NE(s.find("element vertex " + std::to_string(r.surfaces.size()) + "\n"), std::string::npos);
+    EXPECT_NE(s.find("property float nx\n"), std::string::npos);
+    const std::size_t record = 3 * 4 + 3 * 4 + 4 + 8 + 4 + 4;
+    EXPECT_EQ(s.size() - (end + 11), r.surfaces.size() * record);
+    // First vertex's position and normal, read back from the bytes.
+    float v[6];
+    std::memcpy(v, s.data() + end + 11, sizeof v);
+    EXPECT_FLOAT_EQ(v[0], static_cast<float>(r.surfaces[0].home.x()));
+    EXPECT_FLOAT_EQ(v[5], static_cast<float>(r.surfaces[0].normal.z()));
+    // With an offset, positions are double and carry it.
+    std::ostringstream wide;
+    ResultMeta meta;
+    meta.offset = Vec3d(500000, 5400000, 300);
+    write_surfaces_ply(wide, r.surfaces, meta);
+    const std::string w = wide.str();
+    EXPECT_NE(w.find("property double x\n"), std::string::npos);
+    double x = 0;
+    std::memcpy(&x, w.data() + w.find("end_header\n") + 11, sizeof x);
+    EXPECT_DOUBLE_EQ(x, r.surfaces[0].home.x() + 500000);
+}
+
+TEST(ResultsIo, LabelsRoundTrip) {
+    const std::vector<std::int32_t> labels = {-1, 0, 5, 2147483647, -1, 12};
+    test::TempDir dir;
+    write_atomically(dir / "labels.txt", [&](std::ostream& o) { write_labels_txt(o, labels); });
+    EXPECT_EQ(test::read_bytes(dir / "labels.txt"), "-1\n0\n5\n2147483647\n-1\n12\n");
+    EXPECT_EQ(read_labels_txt(dir / "labels.txt"), labels);
+}
+
+TEST(ResultsIo, CsvHasOneRowPerSurface) {
+    const GrowerConfig cfg;
+    const GrowResult r = small_result(cfg);
+    std::ostringstream out;
+    write_surfaces_csv(out, r.surfaces, {});
+    const std::string s = out.str();
+    EXPECT_EQ(static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')), r.surfaces.size() + 1);
+    EXPECT_EQ(s.rfind("id,home_x", 0), 0u);
+}
+
+TEST(ResultsIo, BadResultFilesAreRejectedClearly) {
+    test::TempDir dir;
+    auto expect_code = [](const std::filesystem::path& f, ErrorCode code) {
+        try {
+            (void)read_result_json(f);
+            ADD_FAILURE() << "accepted " << f;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), code) << e.what();
+            EXPECT_NE(std::string(e.what()).find(f.filename().string()), std::string::npos) << e.what();
+        }
+    };
+    expect_code(dir / "missing.json", ErrorCode::kCannotOpen);
+    test::write_bytes(dir / "garbage.json", "{not json");
+    expect_code(dir / "garbage.json", ErrorCode::kMalformedInput);
+    test::write_bytes(dir / "other.json", R"({"format": "something-else"})");
+    expect_code(dir / "other.json", ErrorCode::kMalformedInput);
+    test::write_bytes(dir / "short.json", R"({"format": "surfgrow-result", "units": "m"})");
+    expect_code(dir / "short.json", ErrorCode::kMalformedInput);
+    test::write_bytes(dir / "labels.txt", "0\n1\nbanana\n");
+    try {
+        (void)read_labels_txt(dir / "labels.txt");
+        ADD_FAILURE();
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::kMalformedInput);
+        EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos);
+    }
+}
+
+TEST(AtomicOutput, FailedTransactionLeavesPreviousOutputs) {
+    test::TempDir dir;
+    test::write_bytes(dir / "surfaces.json", "good");
+    try {
+        OutputTransaction tx(dir.path());
+        tx.add("surfaces.json", [](std::ostream& o) { o << "new"; });
+        tx.add("labels.txt", [](std::ostream&) { throw Error(ErrorCode::kMalformedInput, "late failure"); });
+        tx.commit();
+        FAIL();
+    } catch (const Error&) {
+    }
+    EXPECT_EQ(test::read_bytes(dir / "surfaces.json"), "good");
+    EXPECT_FALSE(std::filesystem::exists(dir / "labels.txt"));
+    std::size_t files = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
+    EXPECT_EQ(files, 1u);  // no temporaries left behind
+}
+
+TEST(AtomicOutput, CommitPublishesEveryFile) {
+    test::TempDir dir;
+    OutputTransaction tx(dir / "out");
+    tx.add("a.txt", [](std::ostream& o) { o << "A"; });
+    tx.add("b.txt", [](std::ostream& o) { o << "B"; });
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "a.txt"));
+    tx.commit();
+    EXPECT_EQ(test::read_bytes(dir / "out" / "a.txt"), "A");
+    EXPECT_EQ(test::read_bytes(dir / "out" / "b.txt"), "B");
+}
+
+TEST(AtomicOutput, UnwritableDestinationsReportCannotWrite) {
+    test::TempDir dir;
+    test::write_bytes(dir / "file", "x");
+    try {
+        OutputTransaction tx(dir / "file");  // a file where a folder should be
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::kCannotWrite);
+    }
+    try {
+        write_atomically(dir / "no" / "such" / "folder.txt", [](std::ostream& o) { o << "x"; });
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::kCannotWrite);
+    }
+}
+
+}  // namespace
+}  // namespace surfgrow::io
