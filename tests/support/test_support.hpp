@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>  // Vec3d::cross in Rect::normal() and sample_rect
+
 #include <cstdint>
 #include <filesystem>
 #include <optional>

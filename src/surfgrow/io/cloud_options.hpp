@@ -1,0 +1,45 @@
+// What the point-cloud readers and writers can be asked to do.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace surfgrow::io {
+
+/// The point-cloud file formats surfgrow reads and writes.
+enum class CloudFormat {
+    kPly,   ///< Stanford PLY (.ply)
+    kPcd,   ///< PCL's Point Cloud Data, v0.7 and v0.6 (.pcd)
+    kText,  ///< one point per line (.xyz, .txt, .csv, .pts)
+};
+
+enum class PlyEncoding { kAscii, kBinaryLittleEndian, kBinaryBigEndian };
+enum class PcdEncoding { kAscii, kBinary, kBinaryCompressed };
+
+[[nodiscard]] std::string_view to_string(CloudFormat format);
+[[nodiscard]] std::string_view to_string(PlyEncoding encoding);  ///< as in the PLY header
+[[nodiscard]] std::string_view to_string(PcdEncoding encoding);  ///< as in the PCD DATA line
+
+struct ReadOptions {
+    /// Read as this format whatever the file's extension; nullopt: from the extension, or from
+    /// the content when the extension is not a known one.
+    std::optional<CloudFormat> format;
+    /// Read the integer field `label_field` (PLY property, PCD field, text header column) into
+    /// PointCloud::labels when the file has one.
+    bool read_labels = true;
+    std::string label_field = "label";
+};
+
+struct WriteOptions {
+    /// Write this format whatever the extension; nullopt: from the extension.
+    std::optional<CloudFormat> format;
+    PlyEncoding ply_encoding = PlyEncoding::kBinaryLittleEndian;
+    PcdEncoding pcd_encoding = PcdEncoding::kBinary;
+    /// PLY and PCD: write PointCloud::labels (property / field "label") when the cloud has them.
+    bool write_labels = true;
+    /// Text: add the labels as a fourth column, under a header row "x y z label".
+    bool text_labels = false;
+};
+
+}  // namespace surfgrow::io

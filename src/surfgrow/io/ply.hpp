@@ -1,0 +1,27 @@
+// Stanford PLY point clouds: the vertex element's x, y, z and label; everything else is skipped.
+#pragma once
+
+#include <ostream>
+#include <string_view>
+
+#include "surfgrow/core/point_cloud.hpp"
+#include "surfgrow/io/cloud_options.hpp"
+
+namespace surfgrow::io {
+
+/// Reads a PLY file held in memory (ascii, binary_little_endian or binary_big_endian).
+///
+/// x, y, z may have any scalar type; other properties and other elements (faces with lists,
+/// before or after the vertices) are skipped. Float x, y, z are stored as they are; wider types
+/// get an offset when large (docs/formats.md). The scalar property options.label_field fills
+/// cloud.labels. `source` names the file in messages. Throws Error(kMalformedInput) for a file
+/// that breaks the format, is truncated or whose counts do not match its size.
+[[nodiscard]] PointCloud read_ply(std::string_view bytes, std::string_view source,
+                                  const ReadOptions& options = {});
+
+/// Writes one vertex element: float x y z (double, with the offset added back, when
+/// cloud.offset is non-zero) and int label when `write_labels` and the cloud has labels.
+void write_ply(std::ostream& out, const PointCloud& cloud,
+               PlyEncoding encoding = PlyEncoding::kBinaryLittleEndian, bool write_labels = true);
+
+}  // namespace surfgrow::io
