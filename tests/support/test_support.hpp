@@ -1,6 +1,7 @@
 // Helpers shared by the test executables: temporary folders, optional real data, synthetic planes.
 #pragma once
 
+#include <Eigen/Geometry>  // Rect::normal() uses cross()
 #include <gtest/gtest.h>
 
 #include <cstdint>
