@@ -32,36 +32,71 @@ std::string length_label(double length, const std::string& units) {
     return units.empty() ? std::string(buf) : std::string(buf) + " " + units;
 }
 
-// Axis triad: x red, y green, z blue, each the projection of a world axis; an axis pointing at
-// the viewer (or away) is only its label beside the origin.
-int draw_triad(Image& image, const Camera& camera, const Font* font, int right, int cy,
-               int length) {
+// Axis triad: x red, y green, z blue, each the projection of a world axis, labelled past its
+// tip; an axis along the view direction is a small ring (a dot in it: towards the viewer, a
+// cross: away). Placed left of `right`, centred on row `cy` but kept `bottom_gap` clear of the
+// image's bottom edge (it may reach up into the scene's margin); returns its left edge.
+int draw_triad(Image& image, const Camera& camera, const Font* font, int right, int cy, int length,
+               int bottom_gap) {
     static constexpr Rgb kAxisColor[3] = {{205, 50, 50}, {40, 150, 60}, {50, 90, 210}};
     static constexpr const char* kAxisName[3] = {"x", "y", "z"};
-    const double ox = right - length - (font ? font->pixel_size() * 0.6 : 0.0);
-    const double oy = cy;
-    // Draw the axis pointing away from the viewer first, so nearer axes cross over it.
+    const double em = font ? font->pixel_size() : 0.0;
+    const double width = std::max(1.5, length / 18.0);
+    struct Axis {
+        double tx, ty;  // tip, relative to the origin
+        double lx, ly;  // label centre
+        double planar;  // length on screen / length
+        bool towards;   // points at the viewer
+    };
+    Axis axes[3];
+    double x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // box of the whole triad around the origin
+    for (int k = 0; k < 3; ++k) {
+        const Vec3d c = camera.to_camera(Vec3d::Unit(k));
+        Axis& a = axes[k];
+        a.planar = std::hypot(c.x(), c.y());
+        a.towards = c.z() > 0;
+        a.tx = c.x() * length, a.ty = -c.y() * length;
+        if (a.planar > 0.2) {
+            a.lx = a.tx + c.x() / a.planar * em * 0.6, a.ly = a.ty - c.y() / a.planar * em * 0.6;
+        } else {  // label below left of the ring
+            a.lx = -em * 0.7, a.ly = em * 0.7;
+        }
+        x0 = std::min({x0, a.tx, a.lx - em * 0.4}), x1 = std::max({x1, a.tx, a.lx + em * 0.4});
+        y0 = std::min({y0, a.ty, a.ly - em * 0.5}), y1 = std::max({y1, a.ty, a.ly + em * 0.5});
+    }
+    const double ox = right - x1;
+    const double oy = std::min(cy - (y0 + y1) / 2, image.height() - bottom_gap - y1);
+    // Axes pointing away from the viewer first, so nearer ones cross over them.
     int order[3] = {0, 1, 2};
     std::sort(order, order + 3,
               [&](int a, int b) { return camera.forward()[a] > camera.forward()[b]; });
-    const double width = std::max(1.5, length / 18.0);
     for (int k : order) {
-        const Vec3d c = camera.to_camera(Vec3d::Unit(k));
-        const double ex = ox + c.x() * length, ey = oy - c.y() * length;
-        const double planar = std::hypot(c.x(), c.y());
-        if (planar > 0.2) draw_line(image, ox, oy, ex, ey, width, kAxisColor[k]);
+        const Axis& a = axes[k];
+        const Rgb color = kAxisColor[k];
+        if (a.planar > 0.2) {
+            draw_line(image, ox, oy, ox + a.tx, oy + a.ty, width, color);
+        } else {
+            const double r = std::max(3.0, length / 6.0);
+            for (int i = 0; i < 24; ++i) {  // the ring, as a polygon
+                const double t0 = i * M_PI / 12, t1 = (i + 1) * M_PI / 12;
+                draw_line(image, ox + r * std::cos(t0), oy + r * std::sin(t0),
+                          ox + r * std::cos(t1), oy + r * std::sin(t1), width * 0.8, color);
+            }
+            if (a.towards) {
+                draw_line(image, ox, oy, ox, oy, width * 1.6, color);
+            } else {
+                const double d = r * 0.6;
+                draw_line(image, ox - d, oy - d, ox + d, oy + d, width * 0.8, color);
+                draw_line(image, ox - d, oy + d, ox + d, oy - d, width * 0.8, color);
+            }
+        }
         if (!font) continue;
-        // The label sits beyond the tip, on the axis's line.
-        const double lx = planar > 0.2 ? ex + c.x() / planar * font->pixel_size() * 0.55
-                                       : ox + font->pixel_size() * 0.5;
-        const double ly = planar > 0.2 ? ey - c.y() / planar * font->pixel_size() * 0.55
-                                       : oy - font->pixel_size() * 0.5;
         const int w = font->measure(kAxisName[k]);
-        font->draw(image, static_cast<int>(std::lround(lx - w / 2.0)),
-                   static_cast<int>(std::lround(ly + font->ascent() * 0.38)), kAxisName[k],
-                   kAxisColor[k]);
+        font->draw(image, static_cast<int>(std::lround(ox + a.lx - w / 2.0)),
+                   static_cast<int>(std::lround(oy + a.ly + font->ascent() * 0.38)), kAxisName[k],
+                   color);
     }
-    return static_cast<int>(ox - length - (font ? font->pixel_size() : 0));
+    return static_cast<int>(std::floor(ox + x0));
 }
 
 }  // namespace
@@ -103,7 +138,8 @@ void draw_overlays(Image& image, const std::string& legend, const Camera& camera
     const Font* f = font ? &*font : nullptr;
 
     int right = image.width() - pad;  // what is drawn right to left ends here
-    if (options.axes) right = draw_triad(image, camera, f, right, cy, layout.font_px * 3 / 2);
+    if (options.axes)
+        right = draw_triad(image, camera, f, right, cy, layout.font_px * 7 / 4, pad / 3);
     if (options.scale_bar && !options.camera && options.view != View::kIso) {
         const double length = nice_length(image.width() * 0.12 / camera.scale());
         const double px = length * camera.scale();
