@@ -1,4 +1,5 @@
 // Rendering speed at the sizes: 1600 x 1200 with 10 000 disks, and 1 M raw points.
+// threads 0 = all cores; wall-clock time (UseRealTime), since the work runs on worker threads.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Geometry>
@@ -73,31 +74,40 @@ void BM_RenderDisks(benchmark::State& state) {
     const Scene scene = channel_disks(static_cast<std::size_t>(state.range(0)), 0);
     RenderOptions options;  // 1600 x 1200, iso
     options.supersample = static_cast<int>(state.range(1));
+    options.threads = static_cast<int>(state.range(2));
     for (auto _ : state) benchmark::DoNotOptimize(render_scene(scene, options));
     state.counters["disks"] = double(scene.disks.size());
 }
 BENCHMARK(BM_RenderDisks)
-    ->ArgNames({"disks", "ss"})
-    ->Args({10000, 3})
-    ->Args({10000, 2})
-    ->Args({10000, 1})
-    ->Args({40000, 3})
+    ->ArgNames({"disks", "ss", "threads"})
+    ->Args({10000, 3, 0})
+    ->Args({10000, 3, 1})
+    ->Args({10000, 2, 0})
+    ->Args({10000, 1, 0})
+    ->Args({40000, 3, 0})
+    ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
 void BM_RenderPoints(benchmark::State& state) {
     const Scene scene = channel_disks(10000, static_cast<std::size_t>(state.range(0)));
     RenderOptions options;
+    options.threads = static_cast<int>(state.range(1));
     for (auto _ : state) benchmark::DoNotOptimize(render_scene(scene, options));
     state.counters["points"] = double(scene.points.size());
 }
-BENCHMARK(BM_RenderPoints)->ArgName("points")->Arg(1000000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RenderPoints)
+    ->ArgNames({"points", "threads"})
+    ->Args({1000000, 0})
+    ->Args({1000000, 1})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 void BM_RenderEmpty(benchmark::State& state) {
     Scene scene;
     scene.legend = "0 points -> 0 surfaces, 0.0% registered";
     for (auto _ : state) benchmark::DoNotOptimize(render_scene(scene, RenderOptions{}));
 }
-BENCHMARK(BM_RenderEmpty)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RenderEmpty)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 void BM_EncodePng(benchmark::State& state) {
     const Image image = render_scene(channel_disks(10000, 0), RenderOptions{});

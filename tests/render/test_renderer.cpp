@@ -404,3 +404,19 @@ TEST(Renderer, SupersamplingLevelsAgreeInTheInterior) {
             << "supersample " << ss;
     }
 }
+
+TEST(Renderer, FramesSurfacesNotStrayPointsButPointsAlone) {
+    Scene scene;
+    scene.disks.push_back(disk({0, 0, 0}, -Vec3d::UnitY(), 1.0, {200, 0, 0}));
+    const RenderOptions o = bare();
+    const double scale = frame_scene(scene, o).scale();
+    scene.points.push_back({Vec3f(100, 0, 0), kUnassignedGrey, -1});  // a stray far return
+    EXPECT_DOUBLE_EQ(frame_scene(scene, o).scale(), scale);
+
+    Scene points_only;
+    points_only.points = {{Vec3f(-3, 0, -1), {0, 0, 0}, -1}, {Vec3f(3, 0, 1), {0, 0, 0}, -1}};
+    const Camera cam = frame_scene(points_only, o);
+    const double margin = o.margin * std::min(o.width, o.height);
+    EXPECT_NEAR(cam.project(Vec3d(-3, 0, -1)).x(), margin, 1e-9);
+    EXPECT_NEAR(cam.project(Vec3d(3, 0, 1)).x(), o.width - margin, 1e-9);
+}
