@@ -420,3 +420,18 @@ TEST(Renderer, FramesSurfacesNotStrayPointsButPointsAlone) {
     EXPECT_NEAR(cam.project(Vec3d(-3, 0, -1)).x(), margin, 1e-9);
     EXPECT_NEAR(cam.project(Vec3d(3, 0, 1)).x(), o.width - margin, 1e-9);
 }
+
+TEST(Renderer, FarFromTheOriginKeepsDepthOrder) {
+    // Georeferenced-size coordinates: two disks 1 mm apart in depth, 1e6 m from the origin.
+    const Vec3d base(4.5e5, 5.2e6, 300);
+    Scene scene;
+    scene.disks = {disk(base, -Vec3d::UnitY(), 0.05, {220, 40, 40}),
+                   disk(base - Vec3d(0, 0.001, 0), -Vec3d::UnitY(), 0.02, {40, 40, 220})};
+    RenderOptions o = bare();
+    o.lighting.fog = 0;
+    const Camera cam = frame_scene(scene, o);
+    const Image img = render_scene(scene, o);
+    EXPECT_EQ(pixel_at(img, cam, base), shade({40, 40, 220}, -Vec3d::UnitY(), cam, o.lighting));
+    EXPECT_EQ(pixel_at(img, cam, base + Vec3d(0.035, 0, 0)),
+              shade({220, 40, 40}, -Vec3d::UnitY(), cam, o.lighting));
+}

@@ -156,7 +156,7 @@ void Raster::draw_segment(double x0, double y0, double d0, double x1, double y1,
 void Raster::outline(double step, Rgb color, double strength) {
     if (!(step > 0) || !(strength > 0) || bw_ == 0 || bh_ == 0) return;
     scratch_ = depth_;                       // read the depths before any change
-    const int reach = std::max(1, ss_ / 2);  // about one pixel wide in all
+    const int reach = std::max(1, apron_);  // about a pixel wide in all
     const auto fstep = static_cast<float>(step);
     const std::uint32_t ink = pack(color);
     const auto w = static_cast<std::uint32_t>(std::lround(std::clamp(strength, 0.0, 1.0) * 256));

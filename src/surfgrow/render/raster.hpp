@@ -50,7 +50,7 @@ class Raster {
 
     /// Mixes `color` (weight `strength`) into samples within about a pixel of a depth step
     /// larger than `step` (silhouettes, an edge passing in front of a face): the lines a
-    /// draughtsman draws. Needs an apron of samples / 2.
+    /// draughtsman draws. Looks `apron` samples (at least one) to each side.
     void outline(double step, Rgb color, double strength);
 
     /// While on, only one sample in three is drawn (a fixed diagonal pattern in image sample

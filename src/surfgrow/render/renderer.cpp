@@ -65,7 +65,9 @@ Vec3d disk_half_extent(const Camera& cam, const Vec3d& n, double r) {
     return {reach(cam.right()), reach(cam.up()), reach(cam.forward())};
 }
 
-Extent scene_extent(const Scene& scene, const Camera& cam, bool with_points) {
+// Stray far points must not shrink the picture: frame the disks and normals, and the points
+// only when there is nothing else.
+Extent scene_extent(const Scene& scene, const Camera& cam) {
     Extent e;
     for (const Disk& d : scene.disks) {
         if (!usable(d)) continue;
@@ -76,7 +78,7 @@ Extent scene_extent(const Scene& scene, const Camera& cam, bool with_points) {
         e.add(axes_of(cam, s.from), Vec3d::Zero());
         e.add(axes_of(cam, s.to), Vec3d::Zero());
     }
-    if (with_points)
+    if (e.empty())
         for (const ScenePoint& p : scene.points)
             if (is_finite(p.position))
                 e.add(axes_of(cam, p.position.cast<double>()), Vec3d::Zero());
@@ -120,9 +122,7 @@ Camera frame_scene(const Scene& scene, const RenderOptions& options) {
     validate(options);
     if (options.camera) return *options.camera;
     Camera cam = Camera::preset(options.view);
-    // Stray far points must not shrink the picture: frame the surfaces, the points only alone.
-    const bool with_points = scene.disks.empty() && scene.lines.empty();
-    const Extent e = scene_extent(scene, cam, with_points);
+    const Extent e = scene_extent(scene, cam);
     const int band = overlay_layout(options, !scene.legend.empty()).band_height;
     const PixelRect rect{0, 0, double(options.width), double(options.height - band)};
     const double margin = options.margin * std::min(options.width, options.height);
@@ -155,6 +155,15 @@ Image render_scene(const Scene& scene, const RenderOptions& options) {
         facing[i] = d.normal.dot(f) > 0 ? kBack : kFront;
         depth.add(axes_of(cam, d.center), Vec3d::Zero());
     }
+    // Depths are stored as float relative to the middle of the scene, so that a scene far from
+    // the origin keeps its depth resolution.
+    double z_ref = depth.empty() ? 0.0 : (depth.z0 + depth.z1) / 2;
+    if (depth.empty())
+        for (const ScenePoint& p : scene.points)
+            if (is_finite(p.position)) {
+                z_ref = p.position.cast<double>().dot(f);
+                break;
+            }
     // Points and normals of a disk seen from behind are left out unless back faces are shown:
     // ghosted, they would only cloud the view through it.
     auto shown = [&](std::int32_t disk) {
@@ -173,7 +182,7 @@ Image render_scene(const Scene& scene, const RenderOptions& options) {
         const Vec3d v = n.cross(u);
         const Vec3d c = cam.project(d.center);
         ScreenEllipse e;
-        e.cx = c.x(), e.cy = c.y(), e.depth = c.z();
+        e.cx = c.x(), e.cy = c.y(), e.depth = c.z() - z_ref;
         const double sx = u.dot(cam.right()), sy = -u.dot(cam.up());
         const double slen = std::hypot(sx, sy);
         e.ux = sx / slen, e.uy = sy / slen;
@@ -206,15 +215,16 @@ Image render_scene(const Scene& scene, const RenderOptions& options) {
     };
     std::vector<Line> lines;
     // Normals start on their disk: lift them about two pixels towards the viewer.
-    const double lift = 2 / scale;
+    const double lift = 2 / scale + z_ref;
     for (const Segment& s : scene.lines)
         if (shown(s.disk) && s.from.allFinite() && s.to.allFinite())
             lines.push_back({cam.project(s.from) - Vec3d(0, 0, lift),
                              cam.project(s.to) - Vec3d(0, 0, lift), s.color});
 
-    // Tiles: each needs what touches it and its apron (the outline looks half a pixel out).
+    // Tiles: each needs what touches it and its apron (the outline looks about half a pixel
+    // past the tile's edge).
     const int ss = options.supersample;
-    const int apron = std::max(1, ss / 2);
+    const int apron = (ss + 1) / 2;
     const TileGrid grid(options.width, options.height, kTile);
     const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
     const double pad = 1.0 + double(apron) / ss;
@@ -240,7 +250,7 @@ Image render_scene(const Scene& scene, const RenderOptions& options) {
             continue;
         }
         const Vec3d q = cam.project(p.position.cast<double>());
-        dots[i] = Vec3d(q.x(), q.y(), q.z() + scene.point_depth_bias).cast<float>();
+        dots[i] = Vec3d(q.x(), q.y(), q.z() - z_ref + scene.point_depth_bias).cast<float>();
     }
     const Bins point_bins = grid.bin(
         dots.size(),
