@@ -69,7 +69,8 @@ struct RenderOptions {
     bool axes = true;       ///< a small x/y/z axis triad in the lower right corner
     bool scale_bar = true;  ///< a scale bar (front, side and top views, where lengths are true)
     std::string units;      ///< unit name for the scale bar ("m", "mm"); empty writes none
-    /// Font for the legend; empty: Font::find_default(). Without any font, no text is drawn.
+    /// Font for the text; empty: Font::find_default(), and with no font on the machine the
+    /// picture has no text. A font_file that does not load is an Error(kCannotOpen).
     std::filesystem::path font_file;
 };
 
@@ -77,15 +78,17 @@ struct RenderOptions {
 void validate(const RenderOptions& options);
 
 /// The camera render_scene() uses: options.camera, or the view preset scaled and centred so that
-/// the disks and normals (the points too, if there are no disks) fit the area above the legend.
+/// the disks and normals (the points only if there are neither) fit the area above the legend
+/// band. Validates the options.
 [[nodiscard]] Camera frame_scene(const Scene& scene, const RenderOptions& options);
 
 /// The shaded colour of a disk of colour `color` and unit `normal` under `lighting` (before fog).
 [[nodiscard]] Rgb shade(Rgb color, const Vec3d& normal, const Camera& camera,
                         const Lighting& lighting);
 
-/// Renders `scene`. Deterministic: the same scene and options give the same pixels.
-/// Throws Error(kInvalidParameter) for invalid options.
+/// Renders `scene`. Deterministic: the same scene and options give the same pixels, whatever
+/// the thread count. Throws Error(kInvalidParameter) for invalid options, Error(kCannotOpen)
+/// for a font_file that does not load.
 [[nodiscard]] Image render_scene(const Scene& scene, const RenderOptions& options = {});
 
 }  // namespace surfgrow::render
