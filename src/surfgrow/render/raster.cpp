@@ -155,7 +155,7 @@ void Raster::draw_segment(double x0, double y0, double d0, double x1, double y1,
 
 void Raster::outline(double step, Rgb color, double strength) {
     if (!(step > 0) || !(strength > 0) || bw_ == 0 || bh_ == 0) return;
-    scratch_ = depth_;                       // read the depths before any change
+    scratch_ = depth_;                      // read the depths before any change
     const int reach = std::max(1, apron_);  // about a pixel wide in all
     const auto fstep = static_cast<float>(step);
     const std::uint32_t ink = pack(color);
