@@ -7,6 +7,7 @@
 #include "surfgrow/core/grower_config.hpp"
 #include "surfgrow/core/point_cloud.hpp"
 #include "surfgrow/core/surface_grower.hpp"
+#include "surfgrow/render/image.hpp"
 
 namespace surfgrow::cli {
 
@@ -31,11 +32,15 @@ struct GrowRun {
 
 /// Grows `cloud` with `config` and writes the outputs into `out_dir` as one transaction: either
 /// every file appears (replacing older ones) or none does.
-GrowRun grow_and_write(const PointCloud& cloud, const GrowerConfig& config, const std::filesystem::path& out_dir,
-                       const OutputChoice& outputs, const CloudUnits& units, const std::string& input_name,
-                       double read_seconds);
+GrowRun grow_and_write(const PointCloud& cloud, const GrowerConfig& config,
+                       const std::filesystem::path& out_dir, const OutputChoice& outputs,
+                       const CloudUnits& units, const std::string& input_name, double read_seconds);
 
-/// The one-line summary: "276480 points -> 5231 surfaces, 99.4% registered, 52.9x reduction, 0.041 s".
+/// The default picture of a result: every surface as a disk, iso view, legend line.
+render::Image render_surfaces(const GrowResult& result, const std::string& units, int threads);
+
+/// The one-line summary: "276480 points -> 5231 surfaces, 99.4% registered, 52.9x reduction, 0.041
+/// s".
 std::string summary_line(const GrowStats& stats);
 
 /// A progress callback for GrowerConfig::progress that draws on stderr when it is a terminal,
