@@ -21,10 +21,10 @@ TEST_P(KeySortTest, MatchesStableSort) {
     const auto [n, bits, threads] = GetParam();
     std::mt19937_64 rng(n * 31 + static_cast<unsigned>(bits));
     const std::uint64_t mask = bits == 64 ? ~0ull : ((1ull << bits) - 1);
-    std::vector<std::uint64_t> keys(n);
+    BulkVector<std::uint64_t> keys(n);
     // Few distinct keys in half the cases, so stability is exercised.
     for (auto& k : keys) k = (rng() & mask) % (n % 2 ? mask : 97);
-    std::vector<std::uint32_t> values(n);
+    BulkVector<std::uint32_t> values(n);
     std::iota(values.begin(), values.end(), 0u);
 
     std::vector<std::pair<std::uint64_t, std::uint32_t>> expected(n);

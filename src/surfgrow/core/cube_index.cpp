@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "surfgrow/core/error.hpp"
@@ -37,15 +38,35 @@ CubeIndex::CubeIndex(std::span<const Vec3f> points, double cube_size,
     cube_size_ = cube_size * kCubeInflation;
     inv_cube_ = 1.0 / cube_size_;
 
-    // Bounds of the indexed points (double: the extent decides the key layout).
+    // Bounds of the indexed points, per chunk in parallel (min/max: same result in any order).
     const std::size_t n_in = points.size();
-    Aabb box;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < n_in; ++i) {
-        if (!included(include, i) || !is_finite(points[i])) continue;
-        box.add(points[i].cast<double>());
-        ++count;
+    const int team = n_in < (1u << 16) ? 1 : threads;
+    const auto chunks = static_cast<std::size_t>(team);
+    std::vector<std::size_t> chunk_count(chunks + 1, 0);
+    std::vector<Vec3f> chunk_lo(chunks, Vec3f::Constant(std::numeric_limits<float>::max()));
+    std::vector<Vec3f> chunk_hi(chunks, Vec3f::Constant(std::numeric_limits<float>::lowest()));
+#pragma omp parallel for num_threads(team) schedule(static, 1)
+    for (std::size_t c = 0; c < chunks; ++c) {
+        Vec3f lo = chunk_lo[c], hi = chunk_hi[c];
+        std::size_t k = 0;
+        for (std::size_t i = n_in * c / chunks; i < n_in * (c + 1) / chunks; ++i) {
+            if (!included(include, i) || !is_finite(points[i])) continue;
+            lo = lo.cwiseMin(points[i]);
+            hi = hi.cwiseMax(points[i]);
+            ++k;
+        }
+        chunk_lo[c] = lo;
+        chunk_hi[c] = hi;
+        chunk_count[c + 1] = k;
     }
+    Aabb box;
+    for (std::size_t c = 0; c < chunks; ++c) {
+        if (chunk_count[c + 1] == 0) continue;
+        box.add(chunk_lo[c].cast<double>());
+        box.add(chunk_hi[c].cast<double>());
+    }
+    for (std::size_t c = 0; c < chunks; ++c) chunk_count[c + 1] += chunk_count[c];  // prefix sums
+    const std::size_t count = chunk_count[chunks];
     bounds_ = box;
     if (count == 0) {
         x_.assign(kPadding, 0.f);
@@ -76,24 +97,35 @@ CubeIndex::CubeIndex(std::span<const Vec3f> points, double cube_size,
     shift_y_ = bits_.z();
     shift_x_ = bits_.z() + bits_.y();
 
-    // Keys and input indices of the included finite points, in input order. Keys come from the
-    // float local coordinates the queries use, so a point's cube and its distances agree exactly.
-    std::vector<std::uint64_t> keys;
-    std::vector<std::uint32_t> index;
-    keys.reserve(count);
-    index.reserve(count);
-    for (std::size_t i = 0; i < n_in; ++i) {
-        if (!included(include, i) || !is_finite(points[i])) continue;
-        keys.push_back(encode(coords_of(local_of(points[i]))));
-        index.push_back(static_cast<std::uint32_t>(i));
+    // Keys and input indices of the included finite points, in input order, each chunk written at
+    // its prefix offset. Keys come from the float local coordinates the queries use, so a point's
+    // cube and its distances agree exactly (truncation equals floor: local coordinates are > 0).
+    BulkVector<std::uint64_t> keys(count);
+    BulkVector<std::uint32_t> index(count);
+#pragma omp parallel for num_threads(team) schedule(static, 1)
+    for (std::size_t c = 0; c < chunks; ++c) {
+        std::size_t k = chunk_count[c];
+        for (std::size_t i = n_in * c / chunks; i < n_in * (c + 1) / chunks; ++i) {
+            if (!included(include, i) || !is_finite(points[i])) continue;
+            const Vec3f l = local_of(points[i]);
+            const Eigen::Vector3i coords(static_cast<int>(static_cast<double>(l.x()) * inv_cube_),
+                                         static_cast<int>(static_cast<double>(l.y()) * inv_cube_),
+                                         static_cast<int>(static_cast<double>(l.z()) * inv_cube_));
+            keys[k] = encode(coords);
+            index[k] = static_cast<std::uint32_t>(i);
+            ++k;
+        }
     }
     radix_sort_pairs(keys, index, bits_.sum(), threads);
 
     // Gather coordinates in sorted order; find cube boundaries.
     const std::size_t n = count;
-    x_.resize(n + kPadding, 0.f);
-    y_.resize(n + kPadding, 0.f);
-    z_.resize(n + kPadding, 0.f);
+    x_.resize(n + kPadding);
+    y_.resize(n + kPadding);
+    z_.resize(n + kPadding);
+    std::fill(x_.begin() + static_cast<std::ptrdiff_t>(n), x_.end(), 0.f);  // readable padding
+    std::fill(y_.begin() + static_cast<std::ptrdiff_t>(n), y_.end(), 0.f);
+    std::fill(z_.begin() + static_cast<std::ptrdiff_t>(n), z_.end(), 0.f);
 #pragma omp parallel for num_threads(threads) schedule(static) if (n > (1u << 16))
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3f local = local_of(points[index[i]]);

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "surfgrow/core/bulk_allocator.hpp"
 #include "surfgrow/core/geometry.hpp"
 
 namespace surfgrow {
@@ -118,8 +119,8 @@ class CubeIndex {
     Eigen::Vector3i bits_ = Eigen::Vector3i::Zero();
     int shift_x_ = 0;
     int shift_y_ = 0;
-    std::vector<float> x_, y_, z_;
-    std::vector<std::uint32_t> original_;
+    BulkVector<float> x_, y_, z_;
+    BulkVector<std::uint32_t> original_;
     std::vector<std::uint64_t> cube_keys_;
     std::vector<std::uint32_t> cube_start_;  // cube_count() + 1 entries
 };

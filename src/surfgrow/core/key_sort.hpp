@@ -2,7 +2,7 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
+#include "surfgrow/core/bulk_allocator.hpp"
 
 namespace surfgrow {
 
@@ -10,7 +10,7 @@ namespace surfgrow {
 /// ceil(key_bits / 11) counting passes. Stable, so the result is the same for any `threads`
 /// (the work is split into contiguous chunks, one per thread, with per-chunk histograms).
 /// Bits above `key_bits` must be zero. `keys.size()` must equal `values.size()`.
-void radix_sort_pairs(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& values,
+void radix_sort_pairs(BulkVector<std::uint64_t>& keys, BulkVector<std::uint32_t>& values,
                       int key_bits, int threads);
 
 }  // namespace surfgrow
