@@ -30,10 +30,15 @@ Pose rigid_from_matrix(const Eigen::Matrix4d& m, double tolerance) {
     const double det = r.determinant();
     if (std::abs(det - 1.0) > tolerance)
         not_rigid(cat({"its rotation has determinant ", num(det), " (a reflection?)"}));
-    // Nearest rotation (polar decomposition) so tiny typing errors do not accumulate.
-    const Eigen::JacobiSVD<Mat3d> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    // Nearest rotation (polar decomposition) so typing errors do not accumulate; a matrix that
+    // is already orthonormal to rounding is kept bit for bit, so files round-trip exactly.
     Pose pose = Pose::Identity();
-    pose.linear() = svd.matrixU() * svd.matrixV().transpose();
+    if (ortho > 1e-12) {
+        const Eigen::JacobiSVD<Mat3d> svd(r, Eigen::ComputeFullU | Eigen::ComputeFullV);
+        pose.linear() = svd.matrixU() * svd.matrixV().transpose();
+    } else {
+        pose.linear() = r;
+    }
     pose.translation() = m.topRightCorner<3, 1>();
     return pose;
 }
@@ -50,9 +55,10 @@ Mat3d rotation_from_rpy(const Vec3d& rpy_rad) {
 }
 
 Vec3d rpy_from_rotation(const Mat3d& r) {
-    const double sp = std::clamp(-r(2, 0), -1.0, 1.0);
-    const double pitch = std::asin(sp);
-    if (std::abs(sp) > 1.0 - 1e-12) {
+    // atan2 rather than asin(-r20): asin loses half its digits near +-90 deg.
+    const double cp = std::hypot(r(0, 0), r(1, 0));
+    const double pitch = std::atan2(-r(2, 0), cp);
+    if (cp < 1e-12) {
         // Gimbal lock: only yaw - roll (or yaw + roll) is defined; put it all in yaw.
         return {0.0, pitch, std::atan2(-r(0, 1), r(1, 1))};
     }

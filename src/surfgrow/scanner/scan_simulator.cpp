@@ -94,6 +94,7 @@ SimulatedScan ScanSimulator::simulate(const Pose& pose, std::uint64_t seed) cons
     out.true_range_m.assign(rays, std::numeric_limits<float>::quiet_NaN());
     out.true_normal.assign(rays, Vec3f::Zero());
     std::vector<std::int32_t> centre_face(rays, -1);
+    std::vector<double> centre_t(rays, 0.0);
     std::vector<float> centre_cos(rays, 0.0f);
 
     const Mat3d world_rot = pose.linear();
@@ -120,6 +121,7 @@ SimulatedScan ScanSimulator::simulate(const Pose& pose, std::uint64_t seed) cons
             out.true_range_m[ray] = static_cast<float>(h.t);
             out.true_normal[ray] = h.normal.cast<float>();
             centre_face[ray] = h.face_id;
+            centre_t[ray] = h.t;
             centre_cos[ray] = static_cast<float>(-h.normal.dot(dir));
         }
     }
@@ -157,7 +159,7 @@ SimulatedScan ScanSimulator::simulate(const Pose& pose, std::uint64_t seed) cons
                 beam_frame(i, j, dir, across, up);
                 BeamBlend blend;
                 if (centre_face[ray] >= 0)
-                    blend.add(out.true_range_m[ray], centre_cos[ray], centre_face[ray]);
+                    blend.add(centre_t[ray], centre_cos[ray], centre_face[ray]);
                 for (std::size_t k = 1; k < beam_offsets_.size(); ++k) {
                     const Eigen::Vector2d& o = beam_offsets_[k];
                     const Ray sub{origin, (dir + o.x() * across + o.y() * up).normalized()};
@@ -169,7 +171,7 @@ SimulatedScan ScanSimulator::simulate(const Pose& pose, std::uint64_t seed) cons
                 br = blend.result();
             } else {
                 if (centre_face[ray] < 0) continue;
-                br = {out.true_range_m[ray], std::clamp<double>(centre_cos[ray], 0.0, 1.0),
+                br = {centre_t[ray], std::clamp<double>(centre_cos[ray], 0.0, 1.0),
                       centre_face[ray]};
             }
             out.raw.truth_face_id[ray] = br.face;
