@@ -16,12 +16,12 @@ namespace surfgrow::scanner {
 /// 1 m and 15 mm at 3 m. One sigma would put a third of all readings outside the datasheet's
 /// bound (a sensor out of spec); three sigma would treat the bound as a hard limit (softer).
 ///
-/// Part of that error is systematic: a datasheet accuracy covers the target- and
-/// temperature-dependent bias that averaging cannot remove. A share `systematic_fraction` of
-/// sigma^2 is drawn once per ray and added to all n readings of that ray; the rest is drawn per
-/// reading. Each single reading still has sigma(r) in all, but eq. (1) can only average away
-/// the per-reading part, so a filtered cloud stays as noisy as the datasheet allows rather than
-/// sqrt(n - 2q) times cleaner.
+/// Part of that error is systematic: a datasheet accuracy covers the bias that depends on the
+/// target (colour, material) and on drift, which repeated readings cannot average away. A share
+/// `systematic_fraction` of sigma^2 is therefore drawn once per scan and face of the scene -- an
+/// offset of that surface in that scan, scaled by sigma(r) -- and the rest per reading. Each
+/// single reading still has sigma(r) in all; eq. (1) averages away only the per-reading part, and
+/// the offsets shift whole surfaces (a little differently in each scan) instead of roughening them.
 ///
 /// Dropouts. A reading is lost (0 = no return) with probability dropout_probability(incidence):
 /// 0 up to dropout_start_deg, a smoothstep up to 1 at dropout_full_deg (a weak, glancing return
@@ -38,7 +38,7 @@ struct NoiseModel {
     double accuracy_knee_mm = 1000.0;       ///< range where the +- becomes a fraction
     double far_accuracy_fraction = 0.01;    ///< datasheet +- beyond the knee, fraction of range
     double coverage_factor = 2.0;           ///< the datasheet's +- is this many sigma
-    double systematic_fraction = 0.5;       ///< share of sigma^2 drawn once per ray
+    double systematic_fraction = 0.5;       ///< share of sigma^2 drawn once per scan and face
     bool dropouts = true;                   ///< lose readings at grazing incidence
     double dropout_start_deg = 65.0;        ///< incidence where dropouts begin
     double dropout_full_deg = 85.0;         ///< incidence where every reading is lost

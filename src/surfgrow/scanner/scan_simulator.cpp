@@ -143,6 +143,12 @@ SimulatedScan ScanSimulator::simulate(const Pose& pose, std::uint64_t seed) cons
         return false;
     };
 
+    // The systematic part of the error: one standard normal per face of the scene for this scan
+    // (a surface-dependent offset: colour, material, drift), scaled by sigma(r) at each reading.
+    // Its own stream, apart from the rays' streams.
+    std::vector<double> face_offset(scene_.faces().size());
+    for (std::size_t f = 0; f < face_offset.size(); ++f)
+        face_offset[f] = GaussianSource(mix_seed(~seed, f)).normal();
     const double sys_share = std::sqrt(noise_.systematic_fraction);
     const double rnd_share = std::sqrt(1.0 - noise_.systematic_fraction);
 
@@ -180,7 +186,11 @@ SimulatedScan ScanSimulator::simulate(const Pose& pose, std::uint64_t seed) cons
             if (range_mm < min_mm || range_mm > max_mm) continue;  // beyond the sensor's reach
             GaussianSource g(mix_seed(seed, ray));
             const double sigma = noise_.sigma_mm(range_mm);
-            const double bias = sys_share * sigma * g.normal();
+            // A mixed pixel takes the offset of the face its centre met.
+            const std::int32_t bias_face = br.face >= 0 ? br.face : centre_face[ray];
+            const double z =
+                bias_face >= 0 ? face_offset[static_cast<std::size_t>(bias_face)] : g.normal();
+            const double bias = sys_share * sigma * z;
             const double p_drop =
                 noise_.dropout_probability(rad_to_deg(std::acos(br.cos_incidence)));
             std::uint16_t* dst = &out.raw.readings_mm[ray * static_cast<std::size_t>(n)];

@@ -23,8 +23,9 @@ struct SimulatedScan {
 };
 
 /// Simulates scans of a scene. Each ray draws its random numbers from its own stream
-/// mix_seed(seed, ray index), so a scan depends only on (scene, spec, noise, pose, seed): the
-/// same bytes for any number of threads.
+/// mix_seed(seed, ray index), and each face its systematic offset from mix_seed(~seed, face id),
+/// so a scan depends only on (scene, spec, noise, pose, seed): the same bytes for any number of
+/// threads.
 ///
 /// Two passes: the centre ray of every beam is cast first; a beam's sub-rays (mixed pixels) are
 /// then cast only where a neighbouring centre ray within the footprint's reach met another face
