@@ -1,6 +1,8 @@
 #include "test_support.hpp"
 
 #include <unistd.h>
+
+#include <Eigen/Geometry>  // cross() in sample_rect()
 #include <algorithm>
 #include <atomic>
 #include <cmath>
