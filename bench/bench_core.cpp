@@ -4,15 +4,15 @@
 
 #include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/surface_grower.hpp"
-#include "synthetic_scan.hpp"
+#include "simulated_scans.hpp"
 
 namespace surfgrow::bench {
 namespace {
 
-// One full paper scan (360 x 768 rays) or a 4-pose fusion (~1 M points).
+// One full paper scan of the I-beam channel (360 x 768 rays) or a 4-pose fusion (~1 M points).
 const PointCloud& cloud_for(int poses) {
-    static const PointCloud one = synthetic_scan(1);
-    static const PointCloud four = synthetic_scan(4);
+    static const PointCloud one = ibeam_channel_scan(1);
+    static const PointCloud four = ibeam_channel_scan(4);
     return poses == 1 ? one : four;
 }
 

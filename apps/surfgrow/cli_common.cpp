@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -140,6 +141,12 @@ std::string format_length(double metres) {
     else
         std::snprintf(buf, sizeof buf, "%g m", metres);
     return buf;
+}
+
+std::string length_argument(double metres) {
+    std::string s = format_length(metres);
+    s.erase(std::remove(s.begin(), s.end(), ' '), s.end());
+    return s;
 }
 
 bool stderr_is_terminal() {

@@ -31,6 +31,9 @@ std::vector<double> parse_lengths_m(std::string_view text, std::string_view opti
 /// "12 mm", "1.5 m": a length in metres shown in the unit a person would use.
 std::string format_length(double metres);
 
+/// A length as a command-line argument ("48mm", "1.5m"), for advice the user can paste.
+std::string length_argument(double metres);
+
 /// True when stderr is a terminal (progress is shown only then).
 bool stderr_is_terminal();
 

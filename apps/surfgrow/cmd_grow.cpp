@@ -19,6 +19,7 @@ void add_grow_command(CLI::App& app) {
         GrowOptions grow;
         OutputChoice outputs;
         bool quiet = false;
+        bool stats = false;
     };
     auto args = std::make_shared<Args>();
     cmd->add_option("cloud", args->input, "Input cloud: .ply, .pcd, .xyz, .csv, .txt, .pts")->required();
@@ -29,6 +30,7 @@ void add_grow_command(CLI::App& app) {
     cmd->add_flag("--csv", args->outputs.csv, "Also write surfaces.csv");
     cmd->add_flag("!--no-picture", args->outputs.picture, "Do not render surfaces.png");
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
+    cmd->add_flag("--stats", args->stats, "Also print rejections and registration by range band");
     cmd->callback([args] {
         const CloudUnits units = args->grow.units();
         const auto t0 = std::chrono::steady_clock::now();
@@ -39,6 +41,9 @@ void add_grow_command(CLI::App& app) {
         const GrowRun run = grow_and_write(cloud, config, args->out, args->outputs, units,
                                            std::filesystem::path(args->input).filename().string(), read_s);
         if (!args->quiet) std::cout << summary_line(run.result.stats) << std::endl;
+        if (args->stats) std::cout << stats_table(run.result.stats, units) << std::flush;
+        if (const std::string hint = sparsity_hint(run.result.stats, config, units); !hint.empty())
+            std::cerr << hint << std::endl;
     });
 }
 

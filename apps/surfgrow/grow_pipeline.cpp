@@ -1,11 +1,13 @@
 #include "grow_pipeline.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
 #include "surfgrow/io/atomic_output.hpp"
+#include "surfgrow/core/text.hpp"
 #include "surfgrow/io/results_io.hpp"
 #include "surfgrow/render/png.hpp"
 #include "surfgrow/render/renderer.hpp"
@@ -50,6 +52,61 @@ std::string summary_line(const GrowStats& s) {
         line += buf;
     }
     return line;
+}
+
+std::string stats_table(const GrowStats& s, const CloudUnits& units) {
+    auto pct = [](std::uint64_t a, std::uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; };
+    char buf[256];
+    std::string out;
+    std::snprintf(buf, sizeof buf,
+                  "points: %llu in, %llu valid, %llu invalid (NaN/Inf), %llu outside the workspace\n",
+                  static_cast<unsigned long long>(s.points_in), static_cast<unsigned long long>(s.valid_points),
+                  static_cast<unsigned long long>(s.invalid_points), static_cast<unsigned long long>(s.cropped_points));
+    out += buf;
+    std::snprintf(buf, sizeof buf, "registered: %.2f%% by growing (the paper's loop), %.2f%% after the leftover pass\n",
+                  pct(s.registered_grown, s.valid_points), pct(s.registered, s.valid_points));
+    out += buf;
+    std::snprintf(buf, sizeof buf,
+                  "home points: %llu tried, %llu surfaces, %llu too sparse, %llu not planar, %llu covered; "
+                  "%llu surfaces with an adapted radius\n",
+                  static_cast<unsigned long long>(s.homes_tried), static_cast<unsigned long long>(s.surfaces),
+                  static_cast<unsigned long long>(s.rejected_sparse),
+                  static_cast<unsigned long long>(s.rejected_nonplanar),
+                  static_cast<unsigned long long>(s.rejected_covered),
+                  static_cast<unsigned long long>(s.adapted_surfaces));
+    out += buf;
+    if (s.range_known) {
+        out += "registered by range from the sensor:\n";
+        for (const RangeBand& b : s.range_bands) {
+            if (b.points == 0) continue;
+            std::snprintf(buf, sizeof buf, "  %6s - %-6s %9llu points  %6.2f%%\n",
+                          format_length(b.from * units.metres).c_str(),
+                          std::isfinite(b.to) ? format_length(b.to * units.metres).c_str() : "",
+                          static_cast<unsigned long long>(b.points), pct(b.registered, b.points));
+            out += buf;
+        }
+    }
+    return out;
+}
+
+std::string sparsity_hint(const GrowStats& s, const GrowerConfig& config, const CloudUnits& units) {
+    // Only when registration is poor and sparse home points are the main reason.
+    if (s.valid_points == 0 || s.registered_fraction() >= 0.9) return "";
+    if (s.rejected_sparse < s.rejected_nonplanar || s.rejected_sparse < s.homes_tried / 4) return "";
+    const bool adaptive = config.max_radius() > config.mu;
+    const std::string advice =
+        adaptive ? cat({"Even the adaptive radius (up to ", length_argument(config.max_radius() * units.metres),
+                        ") finds too few: try a larger --mu-max or --mu, or --crop-radius to the robot's "
+                        "workspace"})
+                 : cat({"Try --mu-max ", length_argument(4 * config.mu * units.metres),
+                        " (adaptive radius), a larger --mu, or --crop-radius to the robot's workspace"});
+    const std::string hint = cat(
+        {"note: only ", std::to_string(static_cast<int>(100 * s.registered_fraction())), "% registered: ",
+         std::to_string(s.rejected_sparse), " home points had fewer than ", std::to_string(config.min_pts),
+         " neighbours within ", format_length(config.mu * units.metres),
+         " (points too far apart; the paper's mu suits a ~1 m workspace).\n      ", advice,
+         "; --stats shows registration by range."});
+    return hint;
 }
 
 std::function<void(std::string_view, double)> terminal_progress() {

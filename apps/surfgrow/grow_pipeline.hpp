@@ -43,6 +43,13 @@ render::Image render_surfaces(const GrowResult& result, const std::string& units
 /// s".
 std::string summary_line(const GrowStats& stats);
 
+/// Detail lines for --stats: rejections, both registration figures, registered % by range band.
+std::string stats_table(const GrowStats& stats, const CloudUnits& units);
+
+/// Advice for a result that registers little because the cloud is too sparse for mu, or "" if
+/// none applies. Printed on stderr: the parameters are the user's to change, not ours.
+std::string sparsity_hint(const GrowStats& stats, const GrowerConfig& config, const CloudUnits& units);
+
 /// A progress callback for GrowerConfig::progress that draws on stderr when it is a terminal,
 /// or nothing otherwise.
 std::function<void(std::string_view, double)> terminal_progress();
