@@ -41,6 +41,13 @@ struct PlaneFit {
     return {m.sum / m.n, e.smallest_vector, e.values.cwiseMax(0.0)};  // rounding can dip below 0
 }
 
+/// True when the cubic's eigenvalues already show, with a margin far above their error, that the
+/// neighbourhood fails eq. (2): the full decomposition can be skipped.
+[[nodiscard]] inline bool clearly_not_planar(const Moments& m, double alpha) {
+    const Vec3d e = rough_eigenvalues(covariance(m));
+    return e[0] * alpha > e[1] * (1 + 1e-6) + 1e-6 * e[2];
+}
+
 /// Paper eq. (2): the neighbourhood is a plane when min(lambda) < mid(lambda) / alpha.
 /// A line or a single point is never a plane: mid(lambda) must stand above rounding noise
 /// (1e-10 of the largest), or collinear points would pass on round-off alone.

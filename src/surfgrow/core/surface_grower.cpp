@@ -164,6 +164,12 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
             ++counters.sparse;
             continue;
         }
+        // Most edge and clutter neighbourhoods fail eq. (2) plainly: the cubic's eigenvalues say so
+        // at a third of the full solve's cost.
+        if (clearly_not_planar(m, cfg.alpha)) {
+            ++counters.nonplanar;
+            continue;
+        }
         const PlaneFit fit = fit_plane(m);
         if (!is_planar(fit.eigenvalues, cfg.alpha)) {
             ++counters.nonplanar;
