@@ -6,33 +6,50 @@
 namespace surfgrow::cli {
 
 void GrowOptions::add_to(CLI::App& cmd) {
-    cmd.add_option("--mu", mu, "Cube side and neighbourhood radius, with unit (paper: 12mm)")->capture_default_str();
-    cmd.add_option("--min-pts", min_pts, "Fewest neighbours within mu for a plane (paper: 10)")->capture_default_str();
-    cmd.add_option("--alpha", alpha, "Plane test: min(lambda) < mid(lambda)/alpha, alpha > 1")->capture_default_str();
-    cmd.add_option("--plane-tol", plane_tol, "Register points within this distance of the plane (default: mu)");
-    cmd.add_option("--mu-max", mu_max,
-                   "Adaptive radius: double mu where points are too sparse, up to this (e.g. 48mm; default off)");
-    cmd.add_option("--min-new", min_new, "A new surface must take at least this many unregistered points")
+    cmd.add_option("--mu", mu, "Cube side and neighbourhood radius, with unit (paper: 12mm)")
+        ->capture_default_str();
+    cmd.add_option("--min-pts", min_pts, "Fewest neighbours within mu for a plane (paper: 10)")
+        ->capture_default_str();
+    cmd.add_option("--alpha", alpha, "Plane test: min(lambda) < mid(lambda)/alpha, alpha > 1")
+        ->capture_default_str();
+    cmd.add_option("--plane-tol", plane_tol,
+                   "Register points within this distance of the plane (default: mu)");
+    cmd.add_option(
+        "--mu-max", mu_max,
+        "Adaptive radius: double mu where points are too sparse, up to this length, or off "
+        "(default: 2 mu)");
+    cmd.add_option("--min-new", min_new,
+                   "A new surface must take at least this many unregistered points")
         ->capture_default_str();
     cmd.add_option("--pool-angle", pool_angle,
                    "Refine normals over adjacent surfaces within this angle, degrees (0: off)")
         ->capture_default_str();
     cmd.add_flag("--no-attach", no_attach, "Skip the leftover pass (the paper's loop alone)");
-    cmd.add_option("--seed", seed, "Random seed for home points (same seed, same output)")->capture_default_str();
-    cmd.add_option("--threads", threads, "Worker threads, 0 = all cores (output does not depend on it)")
+    cmd.add_option("--seed", seed, "Random seed for home points (same seed, same output)")
         ->capture_default_str();
-    cmd.add_option("--units", cloud_units, "Length unit of the input cloud: m, cm or mm")->capture_default_str();
-    cmd.add_option("--viewpoint", viewpoint, "Sensor position x,y,z with unit (e.g. 0,0,1.2m) for normals");
+    cmd.add_option("--threads", threads,
+                   "Worker threads, 0 = all cores (output does not depend on it)")
+        ->capture_default_str();
+    cmd.add_option("--units", cloud_units, "Length unit of the input cloud: m, cm or mm")
+        ->capture_default_str();
+    cmd.add_option("--viewpoint", viewpoint,
+                   "Sensor position x,y,z with unit (e.g. 0,0,1.2m) for normals");
     cmd.add_option("--crop-box", crop_box, "Workspace box xmin,ymin,zmin,xmax,ymax,zmax with unit");
-    cmd.add_option("--crop-radius", crop_radius, "Workspace radius around --crop-center (default: the viewpoint)");
+    cmd.add_option("--crop-radius", crop_radius,
+                   "Workspace radius around --crop-center (default: the viewpoint)");
     cmd.add_option("--crop-center", crop_center, "Centre x,y,z with unit of --crop-radius");
-    cmd.add_option("--range-band", range_band, "Width of the range bands in the statistics")->capture_default_str();
+    cmd.add_option("--range-band", range_band, "Width of the range bands in the statistics")
+        ->capture_default_str();
 }
 
-CloudUnits GrowOptions::units() const { return {cloud_units, unit_to_metres(cloud_units, "--units")}; }
+CloudUnits GrowOptions::units() const {
+    return {cloud_units, unit_to_metres(cloud_units, "--units")};
+}
 
 GrowerConfig GrowOptions::config(const CloudUnits& u) const {
-    auto len = [&](const std::string& text, const char* option) { return parse_length_m(text, option) / u.metres; };
+    auto len = [&](const std::string& text, const char* option) {
+        return parse_length_m(text, option) / u.metres;
+    };
     auto vec = [&](const std::string& text, const char* option) -> Vec3d {
         return parse_vec3_length_m(text, option) / u.metres;
     };
@@ -41,7 +58,10 @@ GrowerConfig GrowOptions::config(const CloudUnits& u) const {
     c.min_pts = min_pts;
     c.alpha = alpha;
     if (!plane_tol.empty()) c.plane_tolerance = len(plane_tol, "--plane-tol");
-    if (!mu_max.empty()) c.mu_max = len(mu_max, "--mu-max");
+    if (mu_max == "off")
+        c.adaptive_factor = 1.0;
+    else if (!mu_max.empty())
+        c.adaptive_factor = len(mu_max, "--mu-max") / c.mu;
     c.min_new_points = min_new;
     c.pool_angle_deg = pool_angle;
     c.attach_leftovers = !no_attach;
@@ -57,12 +77,14 @@ GrowerConfig GrowOptions::config(const CloudUnits& u) const {
     }
     if (!crop_radius.empty()) c.crop.radius = len(crop_radius, "--crop-radius");
     if (!crop_center.empty()) {
-        if (crop_radius.empty()) throw Error(ErrorCode::kUsage, "--crop-center needs --crop-radius");
+        if (crop_radius.empty())
+            throw Error(ErrorCode::kUsage, "--crop-center needs --crop-radius");
         c.crop.center = vec(crop_center, "--crop-center");
     }
     c.range_band = len(range_band, "--range-band");
     if (!(pool_angle >= 0 && pool_angle < 90))
-        throw Error(ErrorCode::kInvalidParameter, "--pool-angle must be between 0 (off) and 90 degrees");
+        throw Error(ErrorCode::kInvalidParameter,
+                    "--pool-angle must be between 0 (off) and 90 degrees");
     validate(c);
     return c;
 }

@@ -15,7 +15,7 @@ struct GrowOptions {
     int min_pts = 10;
     double alpha = GrowerConfig{}.alpha;
     std::string plane_tol;  // empty: mu
-    std::string mu_max;     // empty: off
+    std::string mu_max;     // empty: the library's default (2 mu); "off": mu
     int min_new = 1;
     double pool_angle = GrowerConfig{}.pool_angle_deg;
     bool no_attach = false;

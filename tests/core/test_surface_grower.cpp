@@ -244,9 +244,10 @@ TEST(SurfaceGrower, AdaptiveRadiusRegistersSparseFarSurfaces) {
     const Scene s =
         sample_scene({{{0, 0, 3}, Vec3d::UnitX(), Vec3d::UnitY(), 0.5, 0.5}}, 0.02, 0.002, 9);
     GrowerConfig cfg = config_mm();
+    cfg.adaptive_factor = 1.0;  // the paper's fixed mu
     const GrowResult fixed = grow_surfaces(s.cloud, cfg);
     EXPECT_LT(fixed.stats.registered_fraction(), 0.1);
-    cfg.mu_max = 0.096;
+    cfg.adaptive_factor = 8.0;
     const GrowResult adaptive = grow_surfaces(s.cloud, cfg);
     check_invariants(s.cloud, cfg, adaptive);
     EXPECT_GE(adaptive.stats.registered_fraction(), 0.99);
@@ -383,8 +384,10 @@ TEST(SurfaceGrower, RejectsParametersOutOfRange) {
     c.plane_tolerance = -1;
     expect_invalid(c, "negative tolerance");
     c = {};
-    c.mu_max = 0.006;
-    expect_invalid(c, "mu_max < mu");
+    c.adaptive_factor = 0.5;
+    expect_invalid(c, "adaptive radius below mu");
+    c.adaptive_factor = 100;
+    expect_invalid(c, "adaptive radius above 64 mu");
     c = {};
     c.threads = -1;
     expect_invalid(c, "threads < 0");

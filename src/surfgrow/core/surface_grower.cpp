@@ -36,10 +36,9 @@ void validate(const GrowerConfig& c) {
               num(c.alpha)});
     if (!(c.plane_tolerance >= 0) || !std::isfinite(c.plane_tolerance))
         fail({"plane tolerance must be a length >= 0 (0 means mu), got ", num(c.plane_tolerance)});
-    if (!(c.mu_max >= 0) || !std::isfinite(c.mu_max) || (c.mu_max > 0 && c.mu_max < c.mu))
-        fail({"mu-max must be 0 (off) or at least mu, got ", num(c.mu_max)});
-    if (c.mu_max > 64 * c.mu)
-        fail({"mu-max may be at most 64 mu, got ", num(c.mu_max / c.mu), " mu"});
+    if (!(c.adaptive_factor >= 1 && c.adaptive_factor <= 64))
+        fail({"the adaptive radius (mu-max) must be between mu (off) and 64 mu, got ",
+              num(c.adaptive_factor), " mu"});
     if (c.threads < 0) fail({"threads must be >= 0 (0 = all cores), got ", num(c.threads)});
     if (!(c.range_band > 0) || !std::isfinite(c.range_band))
         fail({"range band must be a positive length, got ", num(c.range_band)});
@@ -151,7 +150,7 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
         std::span<const Range> runs(&s.table[9 * (cube - slab.cube_begin)], 9);
         double radius = cfg.mu;
         Moments m = gather_moments(index, runs, h, mu);
-        // Adaptive radius: double it while the support is too thin, up to mu_max.
+        // Adaptive radius: double it while the support is too thin, up to the adaptive maximum.
         while (m.n < cfg.min_pts && radius < max_radius) {
             radius = std::min(2.0 * radius, max_radius);
             s.runs.clear();

@@ -43,7 +43,8 @@ void put_raw(std::ostream& out, T value) {
     out.write(bytes, sizeof(T));
 }
 
-static_assert(std::endian::native == std::endian::little, "binary writers assume a little-endian host");
+static_assert(std::endian::native == std::endian::little,
+              "binary writers assume a little-endian host");
 
 nlohmann::json parameters_json(const GrowerConfig& c) {
     nlohmann::json p = {
@@ -64,18 +65,20 @@ nlohmann::json parameters_json(const GrowerConfig& c) {
         p["crop_box"] = {{"min", {c.crop.box->min.x(), c.crop.box->min.y(), c.crop.box->min.z()}},
                          {"max", {c.crop.box->max.x(), c.crop.box->max.y(), c.crop.box->max.z()}}};
     if (c.crop.radius) p["crop_radius"] = *c.crop.radius;
-    if (c.crop.center) p["crop_center"] = {c.crop.center->x(), c.crop.center->y(), c.crop.center->z()};
+    if (c.crop.center)
+        p["crop_center"] = {c.crop.center->x(), c.crop.center->y(), c.crop.center->z()};
     return p;
 }
 
 nlohmann::json summary_json(const GrowStats& s) {
     nlohmann::json bands = nlohmann::json::array();
     for (const RangeBand& b : s.range_bands) {
-        bands.push_back({{"from", b.from},
-                         {"to", std::isfinite(b.to) ? nlohmann::json(b.to) : nlohmann::json(nullptr)},
-                         {"points", b.points},
-                         {"registered", b.registered},
-                         {"registered_fraction", b.points ? double(b.registered) / double(b.points) : 0.0}});
+        bands.push_back(
+            {{"from", b.from},
+             {"to", std::isfinite(b.to) ? nlohmann::json(b.to) : nlohmann::json(nullptr)},
+             {"points", b.points},
+             {"registered", b.registered},
+             {"registered_fraction", b.points ? double(b.registered) / double(b.points) : 0.0}});
     }
     return {
         {"points_in", s.points_in},
@@ -96,8 +99,9 @@ nlohmann::json summary_json(const GrowStats& s) {
         {"noise_points", s.noise_points},
         {"data_reduction", s.data_reduction()},
         {"orientation", orientation_name(s.orientation)},
-        {"range_origin", s.range_known ? nlohmann::json{s.range_origin.x(), s.range_origin.y(), s.range_origin.z()}
-                                       : nlohmann::json(nullptr)},
+        {"range_origin",
+         s.range_known ? nlohmann::json{s.range_origin.x(), s.range_origin.y(), s.range_origin.z()}
+                       : nlohmann::json(nullptr)},
         {"range_bands", bands},
     };
 }
@@ -115,15 +119,20 @@ Vec3d vec_of(const nlohmann::json& j) {
 
 const char* orientation_name(OrientationSource source) {
     switch (source) {
-        case OrientationSource::kScanOrigins: return "scan_origins";
-        case OrientationSource::kViewpoint: return "viewpoint";
-        case OrientationSource::kFrameOrigin: return "frame_origin";
-        case OrientationSource::kUp: return "up";
+        case OrientationSource::kScanOrigins:
+            return "scan_origins";
+        case OrientationSource::kViewpoint:
+            return "viewpoint";
+        case OrientationSource::kFrameOrigin:
+            return "frame_origin";
+        case OrientationSource::kUp:
+            return "up";
     }
     return "up";
 }
 
-void write_surfaces_ply(std::ostream& out, std::span<const Surface> surfaces, const ResultMeta& meta) {
+void write_surfaces_ply(std::ostream& out, std::span<const Surface> surfaces,
+                        const ResultMeta& meta) {
     const bool wide = meta.offset != Vec3d::Zero();  // keep georeferenced precision
     const char* pos = wide ? "double" : "float";
     out << "ply\nformat binary_little_endian 1.0\n"
@@ -210,7 +219,8 @@ void write_result_json(std::ostream& out, const GrowResult& result, const Grower
     out << text;
 }
 
-void write_surfaces_csv(std::ostream& out, std::span<const Surface> surfaces, const ResultMeta& meta) {
+void write_surfaces_csv(std::ostream& out, std::span<const Surface> surfaces,
+                        const ResultMeta& meta) {
     std::string text =
         "id,home_x,home_y,home_z,normal_x,normal_y,normal_z,plane_d,radius,points,mean_residual,"
         "centroid_x,centroid_y,centroid_z,lambda_min,lambda_mid,lambda_max\n";
@@ -258,7 +268,9 @@ void write_labels_txt(std::ostream& out, std::span<const std::int32_t> labels) {
 
 StoredResult read_result_json(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
-    if (!in) throw Error(ErrorCode::kCannotOpen, cat({"cannot open ", file.string(), " (is this a surfgrow result?)"}));
+    if (!in)
+        throw Error(ErrorCode::kCannotOpen,
+                    cat({"cannot open ", file.string(), " (is this a surfgrow result?)"}));
     nlohmann::json j;
     try {
         j = nlohmann::json::parse(in);
@@ -267,7 +279,8 @@ StoredResult read_result_json(const std::filesystem::path& file) {
     }
     StoredResult r;
     try {
-        if (j.value("format", "") != "surfgrow-result") malformed(file, "not a surfgrow result (no \"format\": \"surfgrow-result\")");
+        if (j.value("format", "") != "surfgrow-result")
+            malformed(file, "not a surfgrow result (no \"format\": \"surfgrow-result\")");
         r.meta.units = j.at("units").get<std::string>();
         r.meta.offset = vec_of(j.at("offset"));
         r.meta.input = j.value("input", "");
@@ -276,7 +289,7 @@ StoredResult read_result_json(const std::filesystem::path& file) {
         r.config.min_pts = p.at("min_pts").get<int>();
         r.config.alpha = p.at("alpha").get<double>();
         r.config.plane_tolerance = p.at("plane_tolerance").get<double>();
-        r.config.mu_max = p.at("mu_max").get<double>();
+        r.config.adaptive_factor = p.at("mu_max").get<double>() / r.config.mu;
         r.config.seed = p.at("seed").get<std::uint64_t>();
         const auto& s = j.at("summary");
         r.stats.points_in = s.at("points_in").get<std::uint64_t>();
@@ -299,13 +312,16 @@ StoredResult read_result_json(const std::filesystem::path& file) {
             surf.mean_residual = js.at("mean_residual").get<double>();
             surf.bounds.add(vec_of(js.at("bounds").at("min")) - r.meta.offset);
             surf.bounds.add(vec_of(js.at("bounds").at("max")) - r.meta.offset);
-            if (!surf.normal.allFinite() || std::abs(surf.normal.norm() - 1.0) > 1e-6 || !surf.home.allFinite())
-                malformed(file, cat({"surface ", std::to_string(r.surfaces.size()), " has a bad normal or home point"}));
+            if (!surf.normal.allFinite() || std::abs(surf.normal.norm() - 1.0) > 1e-6 ||
+                !surf.home.allFinite())
+                malformed(file, cat({"surface ", std::to_string(r.surfaces.size()),
+                                     " has a bad normal or home point"}));
             r.surfaces.push_back(surf);
         }
         if (r.surfaces.size() != r.stats.surfaces)
-            malformed(file, cat({"summary says ", std::to_string(r.stats.surfaces), " surfaces but ",
-                                 std::to_string(r.surfaces.size()), " are listed"}));
+            malformed(file,
+                      cat({"summary says ", std::to_string(r.stats.surfaces), " surfaces but ",
+                           std::to_string(r.surfaces.size()), " are listed"}));
     } catch (const nlohmann::json::exception& e) {
         malformed(file, cat({"missing or mistyped field: ", e.what()}));
     } catch (const std::invalid_argument& e) {
@@ -328,7 +344,8 @@ std::vector<std::int32_t> read_labels_txt(const std::filesystem::path& file) {
         std::int32_t v = 0;
         const auto r = std::from_chars(p, end, v);
         if (r.ec != std::errc() || v < -1 || (r.ptr < end && *r.ptr != '\n'))
-            malformed(file, cat({"line ", std::to_string(line), " is not a surface id (an integer >= -1)"}));
+            malformed(file, cat({"line ", std::to_string(line),
+                                 " is not a surface id (an integer >= -1)"}));
         labels.push_back(v);
         p = r.ptr < end ? r.ptr + 1 : r.ptr;
         ++line;
