@@ -45,7 +45,7 @@ bool all_digits(std::string_view s) {
 
 // A scene file when it names one (or looks like one); a built-in scene otherwise.
 scanner::SceneDescription load_scene(const std::string& name) {
-    if (name.ends_with(".json") || name.find('/') != std::string::npos || fs::exists(name))
+    if (name.ends_with(".json") || name.find('/') != std::string::npos || fs::is_regular_file(name))
         return io::read_scene_file(name);
     return scanner::builtin_scene(name);
 }
