@@ -34,6 +34,12 @@ void add_demo_command(CLI::App& app) {
     cmd->add_option("--poses", args->poses, "Scans along the channel, 0.5 m apart")
         ->capture_default_str();
     args->grow.add_to(*cmd);
+    cmd->get_option("--mu-max")
+        ->description(
+            "Adaptive radius for sparse far points, up to this (demo default 48mm; "
+            "0mm turns it off)")
+        ->default_str(args->grow.mu_max);
+    cmd->get_option("--seed")->description("Seed of the simulated noise and of the home points");
     args->eval.add_to(*cmd);
     cmd->add_flag("-q,--quiet", args->quiet, "Nothing on stdout");
     cmd->callback([args] {
