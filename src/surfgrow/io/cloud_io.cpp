@@ -133,7 +133,8 @@ void write_cloud(const fs::path& path, const PointCloud& cloud, const WriteOptio
     write_atomically(path, [&](std::ostream& out) {
         switch (*format) {
             case CloudFormat::kPly:
-                write_ply(out, cloud, options.ply_encoding, options.write_labels);
+                write_ply(out, cloud, options.ply_encoding, options.write_labels,
+                          options.write_scans);
                 break;
             case CloudFormat::kPcd:
                 write_pcd(out, cloud, options.pcd_encoding, options.write_labels);

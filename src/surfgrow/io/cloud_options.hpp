@@ -29,6 +29,11 @@ struct ReadOptions {
     /// PointCloud::labels when the file has one.
     bool read_labels = true;
     std::string label_field = "label";
+    /// PLY: read the scan each point came from (property "scan") and the scans' origins
+    /// ("comment surfgrow scan_origin k x y z" header lines) into PointCloud::scan_index and
+    /// scan_origins, so normals can face their own sensor. Files without those comments are
+    /// read as before.
+    bool read_scans = true;
 };
 
 struct WriteOptions {
@@ -40,6 +45,9 @@ struct WriteOptions {
     bool write_labels = true;
     /// Text: add the labels as a fourth column, under a header row "x y z label".
     bool text_labels = false;
+    /// PLY: write PointCloud::scan_index as "property uint scan" and scan_origins as header
+    /// comments, when the cloud has them (other formats never carry them).
+    bool write_scans = false;
 };
 
 }  // namespace surfgrow::io

@@ -14,14 +14,20 @@ namespace surfgrow::io {
 /// x, y, z may have any scalar type; other properties and other elements (faces with lists,
 /// before or after the vertices) are skipped. Float x, y, z are stored as they are; wider types
 /// get an offset when large (docs/formats.md). The scalar property options.label_field fills
-/// cloud.labels. `source` names the file in messages. Throws Error(kMalformedInput) for a file
+/// cloud.labels. With options.read_scans, a file whose header has "comment surfgrow scan_origin
+/// k x y z" lines (k = 0, 1, ...) must have an integer vertex property "scan" below their count;
+/// it fills cloud.scan_index and the origins cloud.scan_origins (and cloud.viewpoint when there is
+/// one scan). `source` names the file in messages. Throws Error(kMalformedInput) for a file
 /// that breaks the format, is truncated or whose counts do not match its size.
 [[nodiscard]] PointCloud read_ply(std::string_view bytes, std::string_view source,
                                   const ReadOptions& options = {});
 
 /// Writes one vertex element: float x y z (double, with the offset added back, when
-/// cloud.offset is non-zero) and int label when `write_labels` and the cloud has labels.
+/// cloud.offset is non-zero) and int label when `write_labels` and the cloud has labels; with
+/// `write_scans`, uint scan and one "comment surfgrow scan_origin k x y z" line per scan (file
+/// coordinates, shortest round-trip form) when the cloud has a scan index.
 void write_ply(std::ostream& out, const PointCloud& cloud,
-               PlyEncoding encoding = PlyEncoding::kBinaryLittleEndian, bool write_labels = true);
+               PlyEncoding encoding = PlyEncoding::kBinaryLittleEndian, bool write_labels = true,
+               bool write_scans = false);
 
 }  // namespace surfgrow::io

@@ -1,6 +1,8 @@
-// Reading PLY: header, then each element in order; only the vertex element's x, y, z, label kept.
+// Reading PLY: header, then each element in order; only the vertex element's x, y, z, label (and
+// a fused cloud's scan index with the scan origins from the header) kept.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -48,12 +50,30 @@ struct Element {
 struct Header {
     PlyEncoding encoding = PlyEncoding::kAscii;
     std::vector<Element> elements;
+    std::vector<Vec3d> scan_origins;  // "comment surfgrow scan_origin k x y z", file coordinates
     std::size_t body_offset = 0;
     std::size_t body_first_line = 0;
 };
 
 std::string plural(uint64_t n, std::string_view one, std::string_view many) {
     return cat({count_str(n), " ", n == 1 ? one : many});
+}
+
+// "comment surfgrow scan_origin k x y z": origin k of a fused cloud, ids 0, 1, 2, ... in order.
+void parse_scan_origin(const std::vector<std::string_view>& tok, std::vector<Vec3d>& origins,
+                       std::string_view src, std::size_t line) {
+    uint64_t k = 0;
+    Vec3d o;
+    if (tok.size() != 7 || !parse_uint(tok[3], k) || !parse_double(tok[4], o.x()) ||
+        !parse_double(tok[5], o.y()) || !parse_double(tok[6], o.z()) || !o.allFinite()) {
+        throw_malformed_line(src, line, "expected 'comment surfgrow scan_origin <k> <x> <y> <z>'");
+    }
+    if (k != origins.size()) {
+        throw_malformed_line(src, line,
+                             cat({"scan origin ", count_str(k), " where ",
+                                  count_str(origins.size()), " was expected"}));
+    }
+    origins.push_back(o);
 }
 
 Header parse_header(std::string_view bytes, std::string_view src) {
@@ -79,6 +99,10 @@ Header parse_header(std::string_view bytes, std::string_view src) {
         split_blanks(line, tok);
         if (tok.empty()) continue;
         const std::string_view kw = tok[0];
+        if (kw == "comment" && tok.size() > 2 && tok[1] == "surfgrow" && tok[2] == "scan_origin") {
+            parse_scan_origin(tok, h.scan_origins, src, n);
+            continue;
+        }
         if (kw == "comment" || kw == "obj_info") continue;
         if (kw == "end_header") break;
         if (kw == "format") {
@@ -142,10 +166,11 @@ constexpr std::array<std::string_view, 3> kAxisNames{"x", "y", "z"};
 struct VertexLayout {
     std::array<int, 3> xyz{-1, -1, -1};
     int label = -1;
+    int scan = -1;  // only read when the header gives scan origins
 };
 
-VertexLayout vertex_layout(const Element& vertex, std::string_view src,
-                           const ReadOptions& options) {
+VertexLayout vertex_layout(const Element& vertex, std::string_view src, const ReadOptions& options,
+                           bool want_scan) {
     VertexLayout v;
     for (std::size_t i = 0; i < vertex.props.size(); ++i) {
         const Property& p = vertex.props[i];
@@ -160,6 +185,7 @@ VertexLayout vertex_layout(const Element& vertex, std::string_view src,
         if (options.read_labels && !p.is_list && p.name == options.label_field && v.label < 0) {
             v.label = static_cast<int>(i);
         }
+        if (want_scan && !p.is_list && p.name == "scan" && v.scan < 0) v.scan = static_cast<int>(i);
     }
     for (int a = 0; a < 3; ++a) {
         if (v.xyz[a] < 0) {
@@ -167,6 +193,22 @@ VertexLayout vertex_layout(const Element& vertex, std::string_view src,
         }
     }
     return v;
+}
+
+// A scan index as read: a whole number in [0, 2^32).
+bool scan_from_double(double v, uint32_t& out) {
+    if (!(v >= 0 && v <= 4294967295.0) || v != std::floor(v)) return false;
+    out = static_cast<uint32_t>(v);
+    return true;
+}
+
+void push_scan(PointCloud& cloud, double value, uint64_t i, std::string_view src) {
+    uint32_t k = 0;
+    if (!scan_from_double(value, k)) {
+        throw_malformed(
+            src, cat({"vertex ", count_str(i), " has scan ", num(value), ", not a scan number"}));
+    }
+    cloud.scan_index.push_back(k);
 }
 
 bool wide_coordinates(const Element& vertex, const VertexLayout& v) {
@@ -219,6 +261,14 @@ class BinaryBody {
             }
             read_columns(bytes_.data(), e.count, xyz, v.label >= 0 ? &label : nullptr, swap_, src_,
                          cloud);
+            if (v.scan >= 0) {
+                const auto k = static_cast<std::size_t>(v.scan);
+                cloud.scan_index.reserve(e.count);
+                for (uint64_t i = 0; i < e.count; ++i) {
+                    const char* at = bytes_.data() + base + prop_offset[k] + i * offset;
+                    push_scan(cloud, load_as_double(at, e.props[k].type, swap_), i, src_);
+                }
+            }
             return;
         }
         // Lists inside vertices (rare): walk record by record.
@@ -248,6 +298,7 @@ class BinaryBody {
                     }
                     cloud.labels.push_back(label);
                 }
+                if (ik == v.scan) push_scan(cloud, load_as_double(at, p.type, swap_), i, src_);
             }
             builder.add(xyz[0], xyz[1], xyz[2]);
         }
@@ -340,7 +391,8 @@ class AsciiBody {
                     continue;
                 }
                 const auto ik = static_cast<int>(k);
-                if (ik != v.xyz[0] && ik != v.xyz[1] && ik != v.xyz[2] && ik != v.label) {
+                if (ik != v.xyz[0] && ik != v.xyz[1] && ik != v.xyz[2] && ik != v.label &&
+                    ik != v.scan) {
                     next(e, i);
                     continue;
                 }
@@ -357,6 +409,7 @@ class AsciiBody {
                     }
                     cloud.labels.push_back(label);
                 }
+                if (ik == v.scan) push_scan(cloud, value, i, src_);
             }
             builder.add(xyz[0], xyz[1], xyz[2]);
         }
@@ -407,6 +460,21 @@ class AsciiBody {
     std::string_view src_;
 };
 
+// Scan origins relative to the cloud's offset; every scan index must name one of them.
+void attach_scan_origins(const std::vector<Vec3d>& origins, std::string_view src,
+                         PointCloud& cloud) {
+    for (std::size_t i = 0; i < cloud.scan_index.size(); ++i) {
+        if (cloud.scan_index[i] >= origins.size()) {
+            throw_malformed(src, cat({"vertex ", count_str(i), " has scan ",
+                                      count_str(cloud.scan_index[i]), " but the header gives ",
+                                      plural(origins.size(), "scan origin", "scan origins")}));
+        }
+    }
+    for (const Vec3d& o : origins) cloud.scan_origins.push_back(o - cloud.offset);
+    // As fuse_scans does: a single scan's origin is the cloud's viewpoint.
+    if (origins.size() == 1) cloud.viewpoint = cloud.scan_origins.front();
+}
+
 }  // namespace
 
 PointCloud read_ply(std::string_view bytes, std::string_view source, const ReadOptions& options) {
@@ -420,7 +488,11 @@ PointCloud read_ply(std::string_view bytes, std::string_view source, const ReadO
         vertex = &e;
     }
     if (!vertex) throw_malformed(source, "the header declares no vertex element");
-    const VertexLayout layout = vertex_layout(*vertex, source, options);
+    const bool want_scan = options.read_scans && !h.scan_origins.empty();
+    const VertexLayout layout = vertex_layout(*vertex, source, options, want_scan);
+    if (want_scan && layout.scan < 0) {
+        throw_malformed(source, "the header gives scan origins but the vertices have no scan");
+    }
 
     PointCloud cloud;
     if (h.encoding == PlyEncoding::kAscii) {
@@ -445,6 +517,7 @@ PointCloud read_ply(std::string_view bytes, std::string_view source, const ReadO
         }
         check_padding_tail(bytes, body.pos(), source);
     }
+    if (want_scan) attach_scan_origins(h.scan_origins, source, cloud);
     return cloud;
 }
 

@@ -1,0 +1,120 @@
+#include "eval_job.hpp"
+
+#include <cmath>
+
+#include "cli_common.hpp"
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/text.hpp"
+#include "surfgrow/eval/report_json.hpp"
+#include "surfgrow/io/atomic_output.hpp"
+#include "surfgrow/io/cloud_io.hpp"
+#include "surfgrow/io/results_io.hpp"
+#include "surfgrow/io/scene_file.hpp"
+#include "surfgrow/io/truth_faces_file.hpp"
+#include "surfgrow/scanner/scene.hpp"
+
+namespace surfgrow::cli {
+
+namespace fs = std::filesystem;
+
+void EvalSettings::add_to(CLI::App& cmd) {
+    cmd.add_option("--workspace", workspace,
+                   "Workspace radius around each point's scan origin, for the 'within' figures")
+        ->capture_default_str();
+    cmd.add_option("--band", band, "Width of the range bands")->capture_default_str();
+    cmd.add_option("--require", require,
+                   "Bounds that must hold, e.g. registered>=0.99,normal_median<=3 (exit code 9 "
+                   "otherwise)");
+}
+
+eval::EvalOptions EvalSettings::options() const {
+    eval::EvalOptions o;
+    o.workspace_m = parse_length_m(workspace, "--workspace");
+    o.band_m = parse_length_m(band, "--band");
+    if (!(o.workspace_m > 0))
+        throw Error(ErrorCode::kInvalidParameter,
+                    cat({"--workspace must be positive, got ", workspace}));
+    if (!(o.band_m >= 0.01))
+        throw Error(ErrorCode::kInvalidParameter, cat({"--band must be at least 1cm, got ", band}));
+    return o;
+}
+
+std::vector<eval::Requirement> EvalSettings::requirements() const {
+    std::vector<eval::Requirement> all;
+    for (const std::string& r : require) {
+        for (eval::Requirement& one : eval::parse_requirements(r)) all.push_back(std::move(one));
+    }
+    return all;
+}
+
+Truth read_truth(const fs::path& dir) {
+    if (!fs::is_directory(dir))
+        throw Error(ErrorCode::kCannotOpen,
+                    cat({dir.string(), ": not a folder (expected the output of surfgrow scan)"}));
+    Truth t;
+    t.cloud_file = dir / "cloud.ply";
+    if (!fs::exists(t.cloud_file))
+        throw Error(
+            ErrorCode::kCannotOpen,
+            cat({t.cloud_file.string(), ": missing (expected the output of surfgrow scan)"}));
+    t.cloud = io::read_cloud(t.cloud_file);
+    if (!t.cloud.has_labels() && !t.cloud.empty())
+        throw Error(ErrorCode::kMalformedInput,
+                    cat({t.cloud_file.string(), ": no ground-truth label per point"}));
+    if (fs::exists(dir / "scene.json")) {
+        t.faces = scanner::Scene(io::read_scene_file(dir / "scene.json")).faces();
+    } else if (fs::exists(dir / "truth-faces.json")) {
+        t.faces = io::read_truth_faces(dir / "truth-faces.json");
+    } else {
+        throw Error(ErrorCode::kCannotOpen,
+                    cat({dir.string(), ": neither scene.json nor truth-faces.json"}));
+    }
+    return t;
+}
+
+eval::EvalReport evaluate_folder(const fs::path& result_dir, const Truth& truth,
+                                 const eval::EvalOptions& options) {
+    io::StoredResult result = io::read_result_json(result_dir / "surfaces.json");
+    const std::vector<std::int32_t> labels = io::read_labels_txt(result_dir / "labels.txt");
+    if (labels.size() != truth.cloud.size())
+        throw Error(
+            ErrorCode::kInvalidParameter,
+            cat({(result_dir / "labels.txt").string(), ": ", std::to_string(labels.size()),
+                 " labels, but ", truth.cloud_file.string(), " has ",
+                 std::to_string(truth.cloud.size()), " points: not a result of this scan"}));
+    // The result in metres, relative to the truth cloud's offset.
+    const double scale = unit_to_metres(result.meta.units, "surfaces.json units");
+    const Vec3d shift = result.meta.offset * scale - truth.cloud.offset;
+    for (Surface& s : result.surfaces) {
+        s.home = s.home * scale + shift;
+        s.centroid = s.centroid * scale + shift;
+        s.radius *= scale;
+        s.mean_residual *= scale;
+        s.eigenvalues *= scale * scale;
+    }
+    const eval::GrowOutcome grown{result.surfaces, labels, &result.stats};
+    return eval::evaluate(truth.cloud, grown, truth.faces, options);
+}
+
+void write_eval_json(const fs::path& file, const eval::EvalReport& report,
+                     const std::vector<eval::RequirementCheck>& checks) {
+    const std::string text = eval::to_json(report, checks).dump(2) + "\n";
+    io::write_atomically(file, [&](std::ostream& o) { o << text; });
+}
+
+void enforce(const std::vector<eval::RequirementCheck>& checks) {
+    std::string failed;
+    std::size_t count = 0;
+    for (const eval::RequirementCheck& c : checks) {
+        if (c.met) continue;
+        ++count;
+        failed += cat({failed.empty() ? "" : ", ", c.requirement.text, " (got ",
+                       std::isfinite(c.value) ? num(c.value) : std::string("n/a"), ")"});
+    }
+    if (count)
+        throw Error(ErrorCode::kRequirementFailed,
+                    cat({std::to_string(count), " of ", std::to_string(checks.size()),
+                         " requirements failed: ", failed}));
+}
+
+}  // namespace surfgrow::cli

@@ -1,0 +1,197 @@
+#include "scan_job.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "cli_common.hpp"
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/text.hpp"
+#include "surfgrow/io/atomic_output.hpp"
+#include "surfgrow/io/ply.hpp"
+#include "surfgrow/io/poses_file.hpp"
+#include "surfgrow/io/raw_scan_format.hpp"
+#include "surfgrow/io/scene_file.hpp"
+#include "surfgrow/io/truth_faces_file.hpp"
+#include "surfgrow/scanner/builtin_scenes.hpp"
+#include "surfgrow/scanner/noise_model.hpp"
+#include "surfgrow/scanner/range_filter.hpp"
+#include "surfgrow/scanner/scan_simulator.hpp"
+
+namespace surfgrow::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+[[noreturn]] void invalid(const std::string& message) {
+    throw Error(ErrorCode::kInvalidParameter, message);
+}
+
+bool all_digits(std::string_view s) {
+    if (s.empty()) return false;
+    for (const char c : s) {
+        if (c < '0' || c > '9') return false;
+    }
+    return true;
+}
+
+// A scene file when it names one (or looks like one); a built-in scene otherwise.
+scanner::SceneDescription load_scene(const std::string& name) {
+    if (name.ends_with(".json") || name.find('/') != std::string::npos || fs::is_regular_file(name))
+        return io::read_scene_file(name);
+    return scanner::builtin_scene(name);
+}
+
+std::vector<scanner::Pose> load_poses(const std::string& poses, const scanner::ScanPath& path) {
+    if (!all_digits(poses)) return io::read_poses_file(poses);
+    if (poses.size() > 4) invalid(cat({"--poses ", poses, ": at most 1000 poses"}));
+    return scanner::scan_poses(path, std::stoi(poses));
+}
+
+scanner::NoiseModel noise_model(const std::string& name) {
+    if (name == "datasheet") return {};
+    if (name == "ideal") return scanner::NoiseModel::ideal();
+    throw Error(ErrorCode::kUsage,
+                cat({"--noise: unknown model '", name, "' (use datasheet or ideal)"}));
+}
+
+// A range limit in whole millimetres, or 0 for "the laser's own".
+std::uint16_t range_mm(const std::string& text, const char* option) {
+    if (text.empty()) return 0;
+    const double mm = std::round(parse_length_m(text, option) * 1000.0);
+    if (!(mm >= 1 && mm <= 65534))
+        invalid(cat({option, " ", text, " lies outside any sensor's limits (1..65534 mm)"}));
+    return static_cast<std::uint16_t>(mm);
+}
+
+std::string json_text(const nlohmann::json& j) {
+    return j.dump(2) + "\n";
+}
+
+}  // namespace
+
+void ScanSettings::add_to(CLI::App& cmd) {
+    cmd.add_option("--scene", scene,
+                   "Built-in scene (ibeam-channel, room-corner, pipes) or a scene file (.json)")
+        ->capture_default_str();
+    cmd.add_option("--poses", poses,
+                   "Number of scans along the scene's scan path, or a poses file (text or JSON)")
+        ->capture_default_str();
+    cmd.add_option("--seed", seed, "Random seed of the simulated noise")->capture_default_str();
+    cmd.add_option("--readings", readings, "Readings per ray, n of eq. (1)")->capture_default_str();
+    cmd.add_option("--trim", trim, "Readings trimmed from each end, q of eq. (1); n > 2q")
+        ->capture_default_str();
+    cmd.add_option("--laser", laser, "Laser preset: urg04lx-paper, urg04lx-682, urg04lx-769")
+        ->capture_default_str();
+    cmd.add_option("--noise", noise, "Sensor model: datasheet (URG-04LX) or ideal")
+        ->capture_default_str();
+    cmd.add_option("--min-range", min_range,
+                   "Drop readings nearer than this when fusing (default: the laser's limit)");
+    cmd.add_option("--max-range", max_range,
+                   "Drop readings farther than this when fusing (default: the laser's limit)");
+}
+
+scanner::FuseOptions fuse_options(int readings, int trim, const std::string& min_range,
+                                  const std::string& max_range, const scanner::LaserSpec& laser) {
+    scanner::FuseOptions f;
+    f.trim_q = trim;
+    f.min_range_mm = range_mm(min_range, "--min-range");
+    f.max_range_mm = range_mm(max_range, "--max-range");
+    if (trim < 0) invalid(cat({"--trim must be at least 0, got ", std::to_string(trim)}));
+    if (readings <= 2 * trim)
+        invalid(cat({"--trim ", std::to_string(trim), " leaves nothing of ",
+                     std::to_string(readings), " readings per ray: n must exceed 2q"}));
+    const std::uint16_t lo = f.min_range_mm ? f.min_range_mm : laser.min_range_mm;
+    const std::uint16_t hi = f.max_range_mm ? f.max_range_mm : laser.max_range_mm;
+    if (lo < laser.min_range_mm || hi > laser.max_range_mm || lo >= hi)
+        invalid(cat({"range limits ", std::to_string(lo), "..", std::to_string(hi),
+                     " mm must be increasing and lie within the sensor's limits ",
+                     std::to_string(laser.min_range_mm), "..", std::to_string(laser.max_range_mm),
+                     " mm"}));
+    return f;
+}
+
+ScanData run_scan(const ScanSettings& s) {
+    ScanData d;
+    d.scene_source = s.scene;
+    // Everything is checked before the simulation, so a bad input costs nothing and writes
+    // nothing.
+    scanner::ScannerSpec spec;
+    spec.laser = scanner::laser_preset(s.laser);
+    spec.readings_per_ray = s.readings;
+    spec.validate();
+    const scanner::NoiseModel noise = noise_model(s.noise);
+    d.fuse = fuse_options(s.readings, s.trim, s.min_range, s.max_range, spec.laser);
+    d.scene = std::make_unique<scanner::Scene>(load_scene(s.scene));
+    d.poses = load_poses(s.poses, d.scene->description().scanner);
+
+    auto t0 = Clock::now();
+    const scanner::ScanSimulator simulator(*d.scene, spec, noise);
+    for (scanner::SimulatedScan& sim : simulator.simulate(d.poses, s.seed))
+        d.raws.push_back(std::move(sim.raw));
+    d.simulate_seconds = since(t0);
+    t0 = Clock::now();
+    d.cloud = scanner::fuse_scans(d.raws, d.fuse);
+    d.fuse_seconds = since(t0);
+    return d;
+}
+
+std::string raw_scan_name(std::size_t k) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "scan-%03zu.sgraw", k);
+    return buf;
+}
+
+void write_scan_outputs(const fs::path& dir, const ScanData& d, const ScanSettings& s) {
+    std::vector<std::uint64_t> per_scan(d.raws.size(), 0);
+    for (const std::uint32_t k : d.cloud.scan_index) ++per_scan[k];
+    nlohmann::json scans = nlohmann::json::array();
+    for (std::size_t k = 0; k < d.raws.size(); ++k)
+        scans.push_back({{"file", raw_scan_name(k)},
+                         {"points", per_scan[k]},
+                         {"pose", io::pose_to_json(d.poses[k])}});
+    const scanner::LaserSpec& laser = d.raws.empty() ? scanner::LaserSpec{} : d.raws[0].spec.laser;
+    const nlohmann::json manifest = {
+        {"format", "surfgrow-scan"},
+        {"version", 1},
+        {"scene", d.scene->description().name},
+        {"scene_source", d.scene_source},
+        {"seed", s.seed},
+        {"readings_per_ray", s.readings},
+        {"trim_q", s.trim},
+        {"laser", s.laser},
+        {"noise", s.noise},
+        {"range_mm",
+         {d.fuse.min_range_mm ? d.fuse.min_range_mm : laser.min_range_mm,
+          d.fuse.max_range_mm ? d.fuse.max_range_mm : laser.max_range_mm}},
+        {"points", d.cloud.size()},
+        {"scans", scans},
+        {"files",
+         {{"cloud", "cloud.ply"},
+          {"truth_faces", "truth-faces.json"},
+          {"scene", "scene.json"},
+          {"poses", "poses.txt"}}},
+    };
+
+    io::OutputTransaction tx(dir);
+    for (std::size_t k = 0; k < d.raws.size(); ++k)
+        tx.add(raw_scan_name(k), [&](std::ostream& o) { o << io::encode_raw_scan(d.raws[k]); });
+    tx.add("cloud.ply", [&](std::ostream& o) {
+        io::write_ply(o, d.cloud, io::PlyEncoding::kBinaryLittleEndian, true, true);
+    });
+    tx.add("truth-faces.json", [&](std::ostream& o) { o << io::truth_faces_to_json(*d.scene); });
+    tx.add("scene.json", [&](std::ostream& o) { o << io::scene_to_json(d.scene->description()); });
+    tx.add("poses.txt", [&](std::ostream& o) { o << io::poses_to_text(d.poses); });
+    tx.add("scan.json", [&](std::ostream& o) { o << json_text(manifest); });
+    tx.commit();
+}
+
+}  // namespace surfgrow::cli

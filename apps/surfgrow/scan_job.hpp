@@ -1,0 +1,65 @@
+// Simulating a scene's scan from several poses and publishing it: shared by `scan` and `demo`.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "surfgrow/core/point_cloud.hpp"
+#include "surfgrow/scanner/fuse.hpp"
+#include "surfgrow/scanner/raw_scan.hpp"
+#include "surfgrow/scanner/scene.hpp"
+
+namespace surfgrow::cli {
+
+/// What to scan and how, as given on the command line.
+struct ScanSettings {
+    std::string scene = "ibeam-channel";  ///< a built-in scene's name, or a scene file (.json)
+    std::string poses = "3";              ///< a count along the scene's scan path, or a poses file
+    std::uint64_t seed = 1;
+    int readings = 5;  ///< n of eq. (1)
+    int trim = 1;      ///< q of eq. (1)
+    std::string laser = "urg04lx-paper";
+    std::string noise = "datasheet";  ///< "datasheet" or "ideal" (no noise, dropouts, mixed pixels)
+    std::string min_range;            ///< fusing limits with unit; empty: the laser's own
+    std::string max_range;
+
+    /// Registers the options on a subcommand (everything but the output folder).
+    void add_to(CLI::App& cmd);
+};
+
+/// A simulated multi-pose scan and its fused cloud.
+struct ScanData {
+    std::string scene_source;  ///< the built-in name or the file, as given
+    std::unique_ptr<scanner::Scene> scene;
+    std::vector<scanner::Pose> poses;
+    std::vector<scanner::RawScan> raws;
+    scanner::FuseOptions fuse;
+    PointCloud cloud;  ///< metres, truth face id per point, scan index and origins
+    double simulate_seconds = 0.0;
+    double fuse_seconds = 0.0;
+};
+
+/// Fusing limits and trim from the settings, checked against `laser` before any work is done.
+/// Throws Error(kUsage) for a length without unit, Error(kInvalidParameter) for n <= 2q or limits
+/// outside the sensor's.
+scanner::FuseOptions fuse_options(int readings, int trim, const std::string& min_range,
+                                  const std::string& max_range, const scanner::LaserSpec& laser);
+
+/// Reads the scene and poses, checks every parameter, then simulates and fuses. Nothing is
+/// written. Throws surfgrow::Error for any bad input before the (slow) simulation starts.
+ScanData run_scan(const ScanSettings& settings);
+
+/// Writes, as one transaction into `dir`: scan-000.sgraw ... (raw scans with ground truth),
+/// cloud.ply (the fused cloud: truth label and scan per point, scan origins), truth-faces.json,
+/// scene.json, poses.txt and scan.json (what was simulated, with what).
+void write_scan_outputs(const std::filesystem::path& dir, const ScanData& data,
+                        const ScanSettings& settings);
+
+/// "scan-007.sgraw".
+std::string raw_scan_name(std::size_t k);
+
+}  // namespace surfgrow::cli

@@ -1,0 +1,364 @@
+// End-to-end tests of `surfgrow scan`, `scan2cloud`, `eval` and `demo`: the real binary.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "support/test_support.hpp"
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/text.hpp"
+#include "surfgrow/io/cloud_io.hpp"
+#include "surfgrow/io/raw_scan_format.hpp"
+#include "surfgrow/io/results_io.hpp"
+
+namespace surfgrow {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+    int code = -1;
+    std::string out;  // stdout and stderr together
+};
+
+// Runs the CLI with arguments (already shell-quoted where needed); `env` goes before it.
+CliRun surfgrow(const std::string& args, const std::string& env = "") {
+    const std::string cmd = cat({env, SURFGROW_CLI, " ", args, " 2>&1"});
+    CliRun r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buf{};
+    while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.out += buf.data();
+    const int status = pclose(pipe);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+std::string q(const fs::path& p) {
+    return cat({"'", p.string(), "'"});
+}
+
+nlohmann::json read_json(const fs::path& file) {
+    return nlohmann::json::parse(test::read_bytes(file));
+}
+
+// One scan of the room corner from two poses: small and quick, with every kind of output.
+class CliScan : public ::testing::Test {
+  protected:
+    static void SetUpTestSuite() {
+        dir_ = new test::TempDir();
+        const CliRun r =
+            surfgrow(cat({"scan --scene room-corner --poses 2 --seed 3 -o ", q(scan_dir())}));
+        ASSERT_EQ(r.code, 0) << r.out;
+    }
+    static void TearDownTestSuite() { delete dir_; }
+    static fs::path scan_dir() { return dir_->path() / "scan"; }
+    static test::TempDir* dir_;
+    test::TempDir tmp_;
+};
+test::TempDir* CliScan::dir_ = nullptr;
+
+TEST_F(CliScan, WritesRawScansFusedCloudTruthSceneAndPoses) {
+    for (const char* f : {"scan-000.sgraw", "scan-001.sgraw", "cloud.ply", "truth-faces.json",
+                          "scene.json", "poses.txt", "scan.json"})
+        EXPECT_TRUE(fs::is_regular_file(scan_dir() / f)) << f;
+    EXPECT_FALSE(fs::exists(scan_dir() / "scan-002.sgraw"));
+    const PointCloud cloud = io::read_cloud(scan_dir() / "cloud.ply");
+    ASSERT_TRUE(cloud.has_labels());
+    ASSERT_TRUE(cloud.has_scan_index());
+    ASSERT_EQ(cloud.scan_origins.size(), 2u);
+    const auto manifest = read_json(scan_dir() / "scan.json");
+    EXPECT_EQ(manifest.at("points").get<std::size_t>(), cloud.size());
+    EXPECT_EQ(manifest.at("scans").size(), 2u);
+    EXPECT_EQ(manifest.at("scene"), "room-corner");
+    const scanner::RawScan raw = io::read_raw_scan(scan_dir() / "scan-001.sgraw");
+    EXPECT_TRUE(raw.has_truth());
+    EXPECT_EQ(raw.pose.translation(), cloud.scan_origins[1]);
+}
+
+TEST_F(CliScan, SameSeedSameBytesOnOneThread) {
+    ASSERT_EQ(surfgrow(cat({"scan --scene room-corner --poses 2 --seed 3 -q -o ",
+                            q(tmp_.path() / "again")}),
+                       "OMP_NUM_THREADS=1 ")
+                  .code,
+              0);
+    for (const char* f : {"scan-000.sgraw", "scan-001.sgraw", "cloud.ply", "scan.json"})
+        EXPECT_EQ(test::read_bytes(tmp_.path() / "again" / f), test::read_bytes(scan_dir() / f))
+            << f;
+}
+
+TEST_F(CliScan, Scan2CloudOfTheRawScansIsTheFusedCloud) {
+    const fs::path raw0 = scan_dir() / "scan-000.sgraw", raw1 = scan_dir() / "scan-001.sgraw";
+    const CliRun with_poses =
+        surfgrow(cat({"scan2cloud ", q(raw0), " ", q(raw1), " --poses ",
+                      q(scan_dir() / "poses.txt"), " -o ", q(tmp_.path() / "a.ply")}));
+    ASSERT_EQ(with_poses.code, 0) << with_poses.out;
+    EXPECT_EQ(test::read_bytes(tmp_.path() / "a.ply"), test::read_bytes(scan_dir() / "cloud.ply"));
+    // Without --poses each raw scan's own pose is used: the same cloud.
+    ASSERT_EQ(
+        surfgrow(cat({"scan2cloud ", q(raw0), " ", q(raw1), " -o ", q(tmp_.path() / "b.ply")}))
+            .code,
+        0);
+    EXPECT_EQ(test::read_bytes(tmp_.path() / "b.ply"), test::read_bytes(scan_dir() / "cloud.ply"));
+    // A stricter range limit keeps fewer points.
+    ASSERT_EQ(
+        surfgrow(cat({"scan2cloud ", q(raw0), " --max-range 1.2m -o ", q(tmp_.path() / "c.ply")}))
+            .code,
+        0);
+    EXPECT_LT(io::read_cloud(tmp_.path() / "c.ply").size(),
+              io::read_cloud(scan_dir() / "cloud.ply").size() / 2);
+}
+
+TEST_F(CliScan, OtherPosesMoveTheCloud) {
+    test::write_bytes(tmp_.path() / "moved.txt",
+                      "0.5 0.5 1.6 0 0 45\n0.75 0.25 1.6 0 0 45\n");  // 1 m higher
+    ASSERT_EQ(surfgrow(cat({"scan2cloud ", q(scan_dir() / "scan-000.sgraw"), " ",
+                            q(scan_dir() / "scan-001.sgraw"), " --poses ",
+                            q(tmp_.path() / "moved.txt"), " -o ", q(tmp_.path() / "m.ply")}))
+                  .code,
+              0);
+    const PointCloud a = io::read_cloud(scan_dir() / "cloud.ply");
+    const PointCloud m = io::read_cloud(tmp_.path() / "m.ply");
+    ASSERT_EQ(a.size(), m.size());
+    EXPECT_NEAR(m.points[100].z() - a.points[100].z(), 1.0, 1e-5);
+    EXPECT_NEAR(m.scan_origins[0].z(), 1.6, 1e-12);
+}
+
+TEST_F(CliScan, GrowTurnsNormalsTowardEachPointsOwnScanAndEvalMeasuresIt) {
+    const fs::path out = tmp_.path() / "out";
+    const CliRun g = surfgrow(
+        cat({"grow ", q(scan_dir() / "cloud.ply"), " -o ", q(out), " --no-picture --mu-max 48mm"}));
+    ASSERT_EQ(g.code, 0) << g.out;
+    EXPECT_EQ(read_json(out / "surfaces.json").at("summary").at("orientation"), "scan_origins");
+
+    const CliRun e = surfgrow(cat({"eval ", q(out), " --truth ", q(scan_dir()),
+                                   " --require 'registered_workspace>=99%,normal_median<=3'"}));
+    ASSERT_EQ(e.code, 0) << e.out;
+    EXPECT_NE(e.out.find("eval: "), std::string::npos) << e.out;
+    EXPECT_NE(e.out.find("range band"), std::string::npos) << e.out;
+    const auto j = read_json(out / "eval.json");
+    EXPECT_GE(j.at("metrics").at("registered_workspace").get<double>(), 0.99);
+    EXPECT_LE(j.at("metrics").at("normal_median").get<double>(), 3.0);
+    EXPECT_GE(j.at("metrics").at("facing_sensor").get<double>(), 0.99);
+    EXPECT_EQ(j.at("requirements").size(), 2u);
+    EXPECT_FALSE(j.at("bands").empty());
+
+    // A bound that does not hold: exit code 9, the evaluation still written, the bound named.
+    fs::remove(out / "eval.json");
+    const CliRun strict = surfgrow(
+        cat({"eval ", q(out), " --truth ", q(scan_dir()), " --require 'normal_p95<=0.1'"}));
+    EXPECT_EQ(strict.code, static_cast<int>(ErrorCode::kRequirementFailed)) << strict.out;
+    EXPECT_NE(strict.out.find("normal_p95<=0.1"), std::string::npos) << strict.out;
+    EXPECT_TRUE(fs::exists(out / "eval.json"));
+    EXPECT_EQ(read_json(out / "eval.json").at("requirements").at(0).at("met"), false);
+
+    // A bad bound is a usage error found before anything is read or written.
+    fs::remove(out / "eval.json");
+    const CliRun bad =
+        surfgrow(cat({"eval ", q(out), " --truth ", q(scan_dir()), " --require 'speed>=1'"}));
+    EXPECT_EQ(bad.code, static_cast<int>(ErrorCode::kUsage)) << bad.out;
+    EXPECT_FALSE(fs::exists(out / "eval.json"));
+}
+
+TEST_F(CliScan, EvalCatchesATamperedResult) {
+    const fs::path out = tmp_.path() / "out";
+    ASSERT_EQ(surfgrow(cat({"grow ", q(scan_dir() / "cloud.ply"), " -o ", q(out),
+                            " --no-picture --mu-max 48mm"}))
+                  .code,
+              0);
+    // Rotate every normal by 20 degrees about z in surfaces.json.
+    auto j = read_json(out / "surfaces.json");
+    const double c = std::cos(20 * 3.14159265358979323846 / 180),
+                 s = std::sin(20 * 3.14159265358979323846 / 180);
+    for (auto& surf : j.at("surfaces")) {
+        const double x = surf["normal"][0], y = surf["normal"][1];
+        surf["normal"][0] = c * x - s * y;
+        surf["normal"][1] = s * x + c * y;
+    }
+    test::write_bytes(out / "surfaces.json", j.dump());
+    const CliRun e = surfgrow(
+        cat({"eval ", q(out), " --truth ", q(scan_dir()), " --require 'normal_median<=3'"}));
+    EXPECT_EQ(e.code, static_cast<int>(ErrorCode::kRequirementFailed)) << e.out;
+}
+
+TEST_F(CliScan, EvalRefusesAResultOfAnotherCloud) {
+    const fs::path out = tmp_.path() / "out";
+    ASSERT_EQ(surfgrow(cat({"scan2cloud ", q(scan_dir() / "scan-000.sgraw"), " -o ",
+                            q(tmp_.path() / "one.ply")}))
+                  .code,
+              0);
+    ASSERT_EQ(
+        surfgrow(cat({"grow ", q(tmp_.path() / "one.ply"), " -o ", q(out), " --no-picture"})).code,
+        0);
+    const CliRun e = surfgrow(cat({"eval ", q(out), " --truth ", q(scan_dir())}));
+    EXPECT_EQ(e.code, static_cast<int>(ErrorCode::kInvalidParameter)) << e.out;
+    EXPECT_NE(e.out.find("not a result of this scan"), std::string::npos) << e.out;
+    EXPECT_FALSE(fs::exists(out / "eval.json"));
+}
+
+// Every class of bad input: its own exit code, a message naming the problem, no output at all.
+struct BadCase {
+    std::string name;
+    std::function<std::string(const fs::path& dir, const fs::path& scan)> args;
+    ErrorCode code;
+    std::string expect_in_message;
+};
+
+TEST_F(CliScan, BadInputsGiveDistinctCodesAndNoOutput) {
+    const fs::path raw = scan_dir() / "scan-000.sgraw";
+    const std::vector<BadCase> cases = {
+        {"scene file not JSON",
+         [](auto& d, auto&) {
+             test::write_bytes(d / "bad.json", "{\"format\": \"surfgrow-scene\", ");
+             return cat({"scan --scene ", q(d / "bad.json")});
+         },
+         ErrorCode::kMalformedInput, "bad.json"},
+        {"scene with an unknown key",
+         [](auto& d, auto&) {
+             test::write_bytes(d / "key.json",
+                               R"({"format": "surfgrow-scene", "version": 1, "primitives": [)"
+                               R"({"type": "box", "min": [0,0,0], "max": [1,1,1], "colour": 3}]})");
+             return cat({"scan --scene ", q(d / "key.json")});
+         },
+         ErrorCode::kMalformedInput, "colour"},
+        {"scene with a negative radius",
+         [](auto& d, auto&) {
+             test::write_bytes(d / "neg.json",
+                               R"({"format": "surfgrow-scene", "version": 1, "primitives": [)"
+                               R"({"type": "cylinder", "name": "pipe", "base": [0,0,0], )"
+                               R"("top": [0,0,1], "radius": -0.1}]})");
+             return cat({"scan --scene ", q(d / "neg.json")});
+         },
+         ErrorCode::kInvalidParameter, "pipe"},
+        {"missing scene file",
+         [](auto& d, auto&) {
+             return cat({"scan --scene ", q(d / "nope.json")});
+         },
+         ErrorCode::kCannotOpen, "nope.json"},
+        {"unknown built-in scene", [](auto&, auto&) { return std::string("scan --scene bridge"); },
+         ErrorCode::kInvalidParameter, "ibeam-channel"},
+        {"non-rigid pose",
+         [](auto& d, auto&) {
+             test::write_bytes(d / "scaled.txt", "1.1 0 0 0  0 1 0 0  0 0 1 1  0 0 0 1\n");
+             return cat({"scan --scene room-corner --poses ", q(d / "scaled.txt")});
+         },
+         ErrorCode::kInvalidParameter, "rigid"},
+        {"malformed poses file",
+         [](auto& d, auto&) {
+             test::write_bytes(d / "short.txt", "0 0 1 0 0\n");
+             return cat({"scan --scene room-corner --poses ", q(d / "short.txt")});
+         },
+         ErrorCode::kMalformedInput, "short.txt"},
+        {"zero poses",
+         [](auto&, auto&) { return std::string("scan --scene room-corner --poses 0"); },
+         ErrorCode::kInvalidParameter, "1"},
+        {"n <= 2q",
+         [](auto&, auto&) { return std::string("scan --scene room-corner --readings 4 --trim 2"); },
+         ErrorCode::kInvalidParameter, "n must exceed 2q"},
+        {"readings out of range",
+         [](auto&, auto&) { return std::string("scan --scene room-corner --readings 300"); },
+         ErrorCode::kInvalidParameter, "300"},
+        {"unknown laser preset",
+         [](auto&, auto&) { return std::string("scan --scene room-corner --laser urg99"); },
+         ErrorCode::kInvalidParameter, "urg04lx-paper"},
+        {"range beyond the sensor's limits",
+         [](auto&, auto&) { return std::string("scan --scene room-corner --max-range 5m"); },
+         ErrorCode::kInvalidParameter, "sensor's limits"},
+        {"range without unit",
+         [](auto&, auto&) { return std::string("scan --scene room-corner --max-range 3"); },
+         ErrorCode::kUsage, "unit"},
+        {"unknown noise model",
+         [](auto&, auto&) { return std::string("scan --scene room-corner --noise soft"); },
+         ErrorCode::kUsage, "soft"},
+        {"truncated raw scan",
+         [](auto& d, auto& scan) {
+             const std::string bytes = test::read_bytes(scan / "scan-000.sgraw");
+             test::write_bytes(d / "cut.sgraw", bytes.substr(0, bytes.size() - 1000));
+             return cat({"scan2cloud ", q(d / "cut.sgraw")});
+         },
+         ErrorCode::kMalformedInput, "cut.sgraw"},
+        {"corrupted raw scan",
+         [](auto& d, auto& scan) {
+             std::string bytes = test::read_bytes(scan / "scan-000.sgraw");
+             bytes[5000] = static_cast<char>(bytes[5000] ^ 0x40);
+             test::write_bytes(d / "flip.sgraw", bytes);
+             return cat({"scan2cloud ", q(d / "flip.sgraw")});
+         },
+         ErrorCode::kMalformedInput, "checksum"},
+        {"missing raw scan",
+         [](auto& d, auto&) {
+             return cat({"scan2cloud ", q(d / "none.sgraw")});
+         },
+         ErrorCode::kCannotOpen, "none.sgraw"},
+        {"scan2cloud n <= 2q",
+         [](auto&, auto& scan) {
+             return cat({"scan2cloud ", q(scan / "scan-000.sgraw"), " --trim 3"});
+         },
+         ErrorCode::kInvalidParameter, "scan-000.sgraw"},
+        {"scan2cloud range beyond the sensor's",
+         [](auto&, auto& scan) {
+             return cat({"scan2cloud ", q(scan / "scan-000.sgraw"), " --min-range 10mm"});
+         },
+         ErrorCode::kInvalidParameter, "sensor's limits"},
+        {"scan2cloud non-rigid pose",
+         [](auto& d, auto& scan) {
+             test::write_bytes(d / "shear.txt", "1 0.1 0 0  0 1 0 0  0 0 1 1  0 0 0 1\n");
+             return cat(
+                 {"scan2cloud ", q(scan / "scan-000.sgraw"), " --poses ", q(d / "shear.txt")});
+         },
+         ErrorCode::kInvalidParameter, "rigid"},
+        {"scan2cloud pose count",
+         [](auto&, auto& scan) {
+             return cat(
+                 {"scan2cloud ", q(scan / "scan-000.sgraw"), " --poses ", q(scan / "poses.txt")});
+         },
+         ErrorCode::kInvalidParameter, "2 poses for 1 raw scans"},
+        {"eval without truth folder",
+         [](auto& d, auto&) {
+             return cat({"eval ", q(d / "res"), " --truth ", q(d / "nothing")});
+         },
+         ErrorCode::kCannotOpen, "nothing"},
+    };
+    for (const BadCase& c : cases) {
+        const fs::path out = tmp_.path() / cat({"out-", std::to_string(&c - cases.data())});
+        const std::string args = c.args(tmp_.path(), scan_dir());
+        const bool to_file = args.starts_with("scan2cloud");
+        const fs::path target = to_file ? out / "cloud.ply" : out;
+        if (to_file) fs::create_directories(out);
+        const CliRun r = surfgrow(cat({args, args.starts_with("eval") ? "" : " -o ",
+                                       args.starts_with("eval") ? "" : q(target)}));
+        EXPECT_EQ(r.code, static_cast<int>(c.code)) << c.name << ": " << r.out;
+        EXPECT_NE(r.out.find(c.expect_in_message), std::string::npos) << c.name << ": " << r.out;
+        EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << c.name << ": " << r.out;
+        if (to_file)
+            EXPECT_TRUE(fs::is_empty(out)) << c.name;
+        else
+            EXPECT_FALSE(fs::exists(out)) << c.name;
+    }
+}
+
+TEST(CliDemo, WritesEveryOutputAndPrintsTheSummaryAndEvalLines) {
+    test::TempDir dir;
+    const CliRun r =
+        surfgrow(cat({"demo -o ", q(dir / "demo"), " --require 'registered_workspace>=0.99'"}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find(" points -> "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("eval: "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("range bands"), std::string::npos) << r.out;
+    for (const char* f : {"surfaces.ply", "surfaces.json", "labels.txt", "run.json", "surfaces.png",
+                          "eval.json", "scan/cloud.ply", "scan/scene.json", "scan/truth-faces.json",
+                          "scan/poses.txt", "scan/scan-002.sgraw"})
+        EXPECT_TRUE(fs::is_regular_file(dir / "demo" / f)) << f;
+    // The demo's result evaluates the same through the files as in memory.
+    const auto in_memory = read_json(dir / "demo" / "eval.json");
+    const CliRun e =
+        surfgrow(cat({"eval ", q(dir / "demo"), " --truth ", q(dir / "demo" / "scan"), " -q"}));
+    ASSERT_EQ(e.code, 0) << e.out;
+    EXPECT_EQ(read_json(dir / "demo" / "eval.json").at("metrics"), in_memory.at("metrics"));
+}
+
+}  // namespace
+}  // namespace surfgrow
