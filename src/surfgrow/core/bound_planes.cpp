@@ -239,6 +239,73 @@ void absorb_fragments(std::span<const Vec3f> points, const Members& members,
     }
 }
 
+// Coplanar regions whose patches come within max_gap of each other (a face seen in bands between
+// occlusion shadows, a plate behind a stiffener) are one face: merged when both planes and their
+// pooled fit agree in angle, and each centroid lies within the offset of the pooled plane. Pairs
+// are tried in region order; pooled moments keep chains of merges from drifting.
+void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8_t>& used,
+                 const std::vector<std::int32_t>& region, const BoundPlaneConfig& cfg,
+                 std::vector<std::vector<std::uint32_t>>& region_members,
+                 std::vector<CentredMoments>& region_moments) {
+    const std::size_t nr = region_members.size();
+    if (cfg.max_gap <= 0 || nr < 2) return;
+    std::vector<Vec3f> homes(surfaces.size());
+    double max_radius = 0;
+    for (std::size_t s = 0; s < surfaces.size(); ++s) {
+        homes[s] = surfaces[s].home.cast<float>();
+        if (used[s]) max_radius = std::max(max_radius, surfaces[s].radius);
+    }
+    const CubeIndex index(homes, cfg.max_gap + 2 * max_radius, used, 1);
+    const auto original = index.original_indices();
+    std::vector<std::uint64_t> pairs;
+    for (std::size_t p = 0; p < surfaces.size(); ++p) {
+        if (!used[p]) continue;
+        const Surface& a = surfaces[p];
+        const auto ra = static_cast<std::uint32_t>(region[p]);
+        index.for_each_within(a.home, cfg.max_gap + a.radius + max_radius, [&](std::uint32_t j) {
+            const std::uint32_t q = original[j];
+            const auto rb = static_cast<std::uint32_t>(region[q]);
+            if (ra == rb || region_members[ra].empty() || region_members[rb].empty()) return;
+            if ((surfaces[q].home - a.home).norm() - a.radius - surfaces[q].radius > cfg.max_gap)
+                return;
+            pairs.push_back((std::uint64_t{std::min(ra, rb)} << 32) | std::max(ra, rb));
+        });
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    std::vector<std::uint32_t> parent(nr);
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto root = [&](std::uint32_t r) {
+        while (parent[r] != r) r = parent[r] = parent[parent[r]];
+        return r;
+    };
+    const double cos_max = std::cos(cfg.max_angle_deg * kDeg);
+    auto parallel = [&](const Vec3d& x, const Vec3d& y) { return std::abs(x.dot(y)) >= cos_max; };
+    for (const std::uint64_t key : pairs) {
+        const std::uint32_t a = root(static_cast<std::uint32_t>(key >> 32));
+        const std::uint32_t b = root(static_cast<std::uint32_t>(key & 0xffffffffu));
+        if (a == b) continue;
+        const CentredMoments &ma = region_moments[a], &mb = region_moments[b];
+        CentredMoments pooled = ma;
+        pooled.merge(mb);
+        const Fit fa = fit_moments(ma), fb = fit_moments(mb), fp = fit_moments(pooled);
+        if (fa.degenerate || fb.degenerate || fp.degenerate) continue;
+        if (!parallel(fa.normal, fb.normal) || !parallel(fa.normal, fp.normal) ||
+            !parallel(fb.normal, fp.normal))
+            continue;
+        if (std::abs(fp.normal.dot(ma.mean - pooled.mean)) > cfg.max_offset ||
+            std::abs(fp.normal.dot(mb.mean - pooled.mean)) > cfg.max_offset)
+            continue;
+        const std::uint32_t keep = std::min(a, b), gone = std::max(a, b);
+        parent[gone] = keep;
+        region_moments[keep] = pooled;
+        region_moments[gone] = CentredMoments{};
+        auto& list = region_members[keep];
+        list.insert(list.end(), region_members[gone].begin(), region_members[gone].end());
+        region_members[gone].clear();
+    }
+}
+
 // The in-plane axis of largest spread, with a deterministic sign.
 Vec3d principal_axis(const Vec3d& n, const Mat3d& scatter) {
     const Vec3d e1 = n.unitOrthogonal();
@@ -264,6 +331,7 @@ void validate(const BoundPlaneConfig& c) {
                                                       {"simplify tolerance", c.simplify_tolerance}};
     for (const auto& [name, v] : lengths)
         if (!(v >= 0) || !std::isfinite(v)) bad({name, " must be >= 0 (0: default), got ", num(v)});
+    if (!std::isfinite(c.max_gap)) bad({"max gap must be finite, got ", num(c.max_gap)});
     if (c.resolution > 0 && c.resolution < c.mu * 1e-3)
         bad({"boundary resolution ", num(c.resolution), " is below mu / 1000"});
     if (c.threads < 0) bad({"threads must be >= 0, got ", std::to_string(c.threads)});
@@ -334,6 +402,7 @@ BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surfac
     if (cfg.max_offset == 0)
         cfg.max_offset = std::clamp(3 * out.stats.noise, cfg.mu / 4, cfg.mu / 2);
     if (cfg.adjacency == 0) cfg.adjacency = cfg.mu / 2;
+    if (cfg.max_gap == 0) cfg.max_gap = 5 * cfg.mu;
     if (cfg.resolution == 0) cfg.resolution = cfg.mu / 2;
     if (cfg.simplify_tolerance == 0) cfg.simplify_tolerance = cfg.resolution;
     if (ns == 0 || members.index.empty()) return out;
@@ -413,6 +482,7 @@ BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surfac
     }
     absorb_fragments(cloud.points, members, adj_off, adj, cfg, region, region_members,
                      region_moments, moments);
+    bridge_gaps(surfaces, used, region, cfg, region_members, region_moments);
     std::erase_if(region_members, [](const std::vector<std::uint32_t>& l) { return l.empty(); });
     std::erase_if(region_moments, [](const CentredMoments& m) { return m.n == 0; });
     for (std::vector<std::uint32_t>& list : region_members) std::sort(list.begin(), list.end());

@@ -28,6 +28,9 @@ struct BoundPlaneConfig {
     /// Two patches are neighbours when member points of each lie within this distance (0: mu / 2),
     /// or their home points within the sum of their radii.
     double adjacency = 0.0;
+    /// Coplanar regions whose patches come within this distance of each other are one face
+    /// (occlusion shadows, sparse bands); 0: 5 mu; negative: never bridge gaps.
+    double max_gap = 0.0;
     double resolution = 0.0;  ///< boundary raster cell (0: mu / 2)
     /// Gaps narrower than about twice this are closed in the boundary (0: the larger of the
     /// resolution and 1.5 x the region's point spacing, measured from its patches).
