@@ -335,6 +335,14 @@ void write_planes_obj(std::ostream& out, const PlaneMesh& mesh, const ResultMeta
     buf.flush();
 }
 
+void write_planes_ply(std::ostream& out, const BoundPlanes& planes, const ResultMeta& meta) {
+    write_planes_ply(out, mesh_bound_planes(planes), meta);
+}
+
+void write_planes_obj(std::ostream& out, const BoundPlanes& planes, const ResultMeta& meta) {
+    write_planes_obj(out, mesh_bound_planes(planes), meta);
+}
+
 PlaneMesh read_planes_ply(const std::filesystem::path& file, const Vec3d& offset) {
     const FileBytes bytes = FileBytes::read(file);
     const std::string_view all = bytes.view();

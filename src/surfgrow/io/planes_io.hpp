@@ -38,6 +38,10 @@ void write_planes_ply(std::ostream& out, const PlaneMesh& mesh, const ResultMeta
 /// vertex normal per plane.
 void write_planes_obj(std::ostream& out, const PlaneMesh& mesh, const ResultMeta& meta);
 
+/// The same, meshing `planes` first (mesh_bound_planes): what `surfgrow grow` calls.
+void write_planes_ply(std::ostream& out, const BoundPlanes& planes, const ResultMeta& meta);
+void write_planes_obj(std::ostream& out, const BoundPlanes& planes, const ResultMeta& meta);
+
 /// Reads a planes.ply written by write_planes_ply (positions relative to `offset`, which is
 /// subtracted). Throws Error(kCannotOpen) or Error(kMalformedInput) naming the file and the
 /// problem (another layout, truncated, an index out of range).
