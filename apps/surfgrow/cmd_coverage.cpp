@@ -54,7 +54,7 @@ void add_coverage_command(CLI::App& app) {
         std::string blast = "12mm";
         std::string standoff = "300mm";
         std::string band = "5:40";
-        double tilt = -1;
+        double tilt = 0;
         std::string spacing;
         std::string start;
         int threads = 0;
@@ -73,13 +73,14 @@ void add_coverage_command(CLI::App& app) {
     cmd->add_option("--angle-band", args->band,
                     "Allowed angle between tool axis and normal, MIN:MAX degrees")
         ->capture_default_str();
-    cmd->add_option("--tilt", args->tilt, "Tilt used, degrees within the band (default: MIN)");
+    auto* tilt =
+        cmd->add_option("--tilt", args->tilt, "Tilt used, degrees within the band (default: MIN)");
     cmd->add_option("--spacing", args->spacing, "Planning grid (default: blast radius / 3)");
     cmd->add_option("--start", args->start, "Tool start position x,y,z with unit");
     cmd->add_option("--threads", args->threads, "Worker threads, 0 = all cores")
         ->capture_default_str();
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
-    cmd->callback([args] {
+    cmd->callback([args, tilt] {
         namespace fs = std::filesystem;
         const fs::path dir = args->dir;
         const io::StoredResult result = read_grown_result(dir);
@@ -88,7 +89,7 @@ void add_coverage_command(CLI::App& app) {
         config.blast_radius = parse_length_m(args->blast, "--blast-radius") / metres;
         config.standoff = parse_length_m(args->standoff, "--standoff") / metres;
         std::tie(config.min_angle_deg, config.max_angle_deg) = parse_band(args->band);
-        if (args->tilt >= 0) config.tilt_deg = args->tilt;
+        if (tilt->count() > 0) config.tilt_deg = args->tilt;
         if (!args->spacing.empty()) {
             config.sample_spacing = parse_length_m(args->spacing, "--spacing") / metres;
             if (!(config.sample_spacing > 0))

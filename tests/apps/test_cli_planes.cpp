@@ -233,6 +233,7 @@ TEST_F(CliPlanes, BadInputsGiveClearErrorsAndLeaveOutputsAlone) {
          "angle band"},
         {"band syntax", "coverage " + o + " --angle-band 5-40", ErrorCode::kUsage, "MIN:MAX"},
         {"tilt outside", "coverage " + o + " --tilt 50", ErrorCode::kInvalidParameter, "tilt"},
+        {"tilt negative", "coverage " + o + " --tilt=-5", ErrorCode::kInvalidParameter, "tilt"},
         {"blast zero", "coverage " + o + " --blast-radius 0mm", ErrorCode::kInvalidParameter,
          "blast"},
         {"blast without unit", "coverage " + o + " --blast-radius 12", ErrorCode::kUsage, "unit"},
