@@ -8,41 +8,14 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/file_bytes.hpp"
+#include "surfgrow/io/json_fields.hpp"
 #include "surfgrow/io/output_buffer.hpp"
 
 namespace surfgrow::io {
 
 namespace {
 
-using nlohmann::json;
-using nlohmann::ordered_json;
-
-ordered_json vec_json(const Vec3d& v) {
-    return ordered_json::array({v.x(), v.y(), v.z()});
-}
-
-std::string string_of(const json& j, const char* what) {
-    if (!j.is_string()) throw std::invalid_argument(cat({what, " is not a string"}));
-    return j.get_ref<const std::string&>();
-}
-
-[[noreturn]] void malformed(const std::filesystem::path& file, std::string_view what) {
-    throw Error(ErrorCode::kMalformedInput, cat({file.string(), ": ", what}));
-}
-
-Vec3d vec_of(const json& j, const char* what) {
-    if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() ||
-        !j[2].is_number())
-        throw std::invalid_argument(cat({what, " is not [x, y, z]"}));
-    const Vec3d v(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
-    if (!v.allFinite()) throw std::invalid_argument(cat({what, " is not finite"}));
-    return v;
-}
-
-void check_unit(const Vec3d& v, const char* what) {
-    if (std::abs(v.norm() - 1.0) > 1e-6)
-        throw std::invalid_argument(cat({what, " is not a unit vector"}));
-}
+using namespace json_fields;
 
 Eigen::Quaterniond quaternion_of(double w, double x, double y, double z) {
     const Eigen::Quaterniond q(w, x, y, z);
@@ -172,15 +145,7 @@ void write_coverage_csv(std::ostream& out, const CoveragePlan& plan, const Resul
 }
 
 StoredCoverage read_coverage_json(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in || std::filesystem::is_directory(file))
-        throw Error(ErrorCode::kCannotOpen, cat({"cannot open ", file.string()}));
-    json j;
-    try {
-        j = json::parse(in);
-    } catch (const json::exception& e) {
-        malformed(file, cat({"not valid JSON: ", e.what()}));
-    }
+    const json j = parse_file(file);
     StoredCoverage r;
     CoveragePlan& plan = r.plan;
     std::string where = "the header";

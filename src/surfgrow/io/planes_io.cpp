@@ -11,51 +11,22 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/file_bytes.hpp"
+#include "surfgrow/io/json_fields.hpp"
 #include "surfgrow/io/output_buffer.hpp"
 
 namespace surfgrow::io {
 
 namespace {
 
-using nlohmann::json;
-using nlohmann::ordered_json;
+using namespace json_fields;
 
 static_assert(std::endian::native == std::endian::little,
               "binary writers assume a little-endian host");
-
-ordered_json vec_json(const Vec3d& v) {
-    return ordered_json::array({v.x(), v.y(), v.z()});
-}
 
 ordered_json ring_json(const Ring& ring) {
     ordered_json out = ordered_json::array();
     for (const Vec2d& p : ring) out.push_back(ordered_json::array({p.x(), p.y()}));
     return out;
-}
-
-std::string string_of(const json& j, const char* what) {
-    if (!j.is_string()) throw std::invalid_argument(cat({what, " is not a string"}));
-    return j.get_ref<const std::string&>();
-}
-
-[[noreturn]] void malformed(const std::filesystem::path& file, std::string_view what) {
-    throw Error(ErrorCode::kMalformedInput, cat({file.string(), ": ", what}));
-}
-
-Vec3d vec_of(const json& j, const char* what) {
-    if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() ||
-        !j[2].is_number())
-        throw std::invalid_argument(cat({what, " is not [x, y, z]"}));
-    const Vec3d v(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
-    if (!v.allFinite()) throw std::invalid_argument(cat({what, " is not finite"}));
-    return v;
-}
-
-Vec3d unit_of(const json& j, const char* what) {
-    const Vec3d v = vec_of(j, what);
-    if (std::abs(v.norm() - 1.0) > 1e-6)
-        throw std::invalid_argument(cat({what, " is not a unit vector"}));
-    return v;
 }
 
 Ring ring_of(const json& j, const std::string& what) {
@@ -74,13 +45,6 @@ Ring ring_of(const json& j, const std::string& what) {
         ring.push_back(p);
     }
     return ring;
-}
-
-double non_negative(const json& j, const char* what) {
-    if (!j.is_number()) throw std::invalid_argument(cat({what, " is not a number"}));
-    const double v = j.get<double>();
-    if (!std::isfinite(v) || v < 0) throw std::invalid_argument(cat({what, " must be >= 0"}));
-    return v;
 }
 
 }  // namespace
@@ -155,15 +119,7 @@ void write_planes_json(std::ostream& out, const BoundPlanes& planes, const Resul
 }
 
 StoredPlanes read_planes_json(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in || std::filesystem::is_directory(file))
-        throw Error(ErrorCode::kCannotOpen, cat({"cannot open ", file.string()}));
-    json j;
-    try {
-        j = json::parse(in);
-    } catch (const json::exception& e) {
-        malformed(file, cat({"not valid JSON: ", e.what()}));
-    }
+    const json j = parse_file(file);
     StoredPlanes r;
     BoundPlanes& bp = r.planes;
     std::string where = "the header";
