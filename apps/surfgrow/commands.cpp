@@ -3,13 +3,23 @@
 namespace surfgrow::cli {
 
 void add_grow_command(CLI::App& app);
+void add_planes_command(CLI::App& app);
+void add_coverage_command(CLI::App& app);
+void add_occupancy_command(CLI::App& app);
+void add_collide_command(CLI::App& app);
+void add_render_command(CLI::App& app);
+void add_view_command(CLI::App& app);
 void add_scan_command(CLI::App& app);
 void add_scan2cloud_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
 
+// The order here is the order of `surfgrow --help`: the main job first, then what is made from
+// its result, then the simulator and evaluation.
 void add_all_commands(CLI::App& app) {
     add_grow_command(app);
+    add_planes_command(app);
+    add_coverage_command(app);
     add_scan_command(app);
     add_scan2cloud_command(app);
     add_eval_command(app);

@@ -1,0 +1,44 @@
+// `surfgrow planes DIR --cloud CLOUD`: bound planes of an existing result.
+#include <iostream>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "planes_options.hpp"
+#include "result_folder.hpp"
+#include "surfgrow/core/error.hpp"
+
+namespace surfgrow::cli {
+
+void add_planes_command(CLI::App& app) {
+    auto* cmd = app.add_subcommand(
+        "planes", "Merge a result's surfaces into bound planes: planes.json and planes.ply");
+    struct Args {
+        std::string dir;
+        std::string cloud;
+        PlanesOptions planes;
+        int threads = 0;
+        bool quiet = false;
+    };
+    auto args = std::make_shared<Args>();
+    cmd->add_option("dir", args->dir, "Result folder written by `surfgrow grow`")->required();
+    cmd->add_option("--cloud", args->cloud, "The cloud the result was grown from")->required();
+    args->planes.add_to(*cmd);
+    cmd->add_option("--threads", args->threads, "Worker threads, 0 = all cores")
+        ->capture_default_str();
+    cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
+    cmd->callback([args] {
+        const GrownFolder f = read_grown_folder(args->dir, args->cloud);
+        const io::ResultMeta& meta = f.result.meta;
+        const BoundPlaneConfig config =
+            args->planes.config(unit_to_metres(meta.units, "units in surfaces.json"),
+                                f.result.config.mu, args->threads);
+        const BoundPlanes planes =
+            compute_bound_planes(f.cloud, f.result.surfaces, f.labels, config);
+        io::OutputTransaction tx(args->dir);
+        stage_planes(tx, planes, meta, args->planes.obj);
+        tx.commit();
+        if (!args->quiet) std::cout << planes_summary(planes, meta.units) << std::endl;
+    });
+}
+
+}  // namespace surfgrow::cli

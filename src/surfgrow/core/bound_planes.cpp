@@ -1,0 +1,570 @@
+#include "surfgrow/core/bound_planes.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <numeric>
+
+#include "surfgrow/core/boundary_polygon.hpp"
+#include "surfgrow/core/cube_index.hpp"
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/plane_raster.hpp"
+#include "surfgrow/core/symmetric_eigen.hpp"
+#include "surfgrow/core/text.hpp"
+
+namespace surfgrow {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+[[noreturn]] void bad(std::initializer_list<std::string_view> what) {
+    throw Error(ErrorCode::kInvalidParameter, cat(what));
+}
+
+// Count, mean and scatter matrix about the mean: merging two sets is exact and stable (Chan et
+// al.), so a region's plane is the least-squares fit of the union of its patches' points.
+struct CentredMoments {
+    double n = 0;
+    Vec3d mean = Vec3d::Zero();
+    Mat3d scatter = Mat3d::Zero();
+
+    void merge(const CentredMoments& o) {
+        if (o.n == 0) return;
+        const double total = n + o.n;
+        const Vec3d delta = o.mean - mean;
+        scatter += o.scatter + (n * o.n / total) * delta * delta.transpose();
+        mean += delta * (o.n / total);
+        n = total;
+    }
+};
+
+struct Fit {
+    Vec3d normal = Vec3d::UnitZ();
+    Vec3d eigenvalues = Vec3d::Zero();
+    bool degenerate = true;
+};
+
+// Least-squares plane of the moments; degenerate when the points are (nearly) collinear.
+Fit fit_moments(const CentredMoments& m) {
+    Fit f;
+    if (m.n < 3) return f;
+    const Mat3d cov = 0.5 * (m.scatter + m.scatter.transpose()) / m.n;
+    const SymmetricEigen3 e = symmetric_eigen(cov);
+    f.normal = e.smallest_vector;
+    f.eigenvalues = e.values.cwiseMax(0.0);
+    f.degenerate = !(f.eigenvalues[1] > 1e-12 * f.eigenvalues[2] && f.eigenvalues[1] > 0);
+    return f;
+}
+
+double median_of(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    const auto mid = v.begin() + static_cast<long>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return *mid;
+}
+
+// Member points of each surface, input order: CSR offsets and indices.
+struct Members {
+    std::vector<std::uint32_t> offset;  // surfaces + 1
+    std::vector<std::uint32_t> index;
+    [[nodiscard]] std::span<const std::uint32_t> of(std::size_t s) const {
+        return {index.data() + offset[s], offset[s + 1] - offset[s]};
+    }
+};
+
+Members collect_members(std::span<const Vec3f> points, std::span<const std::int32_t> labels,
+                        std::size_t surfaces) {
+    Members m;
+    m.offset.assign(surfaces + 1, 0);
+    for (std::size_t i = 0; i < labels.size(); ++i)
+        if (labels[i] >= 0 && is_finite(points[i]))
+            ++m.offset[static_cast<std::size_t>(labels[i]) + 1];
+    for (std::size_t s = 0; s < surfaces; ++s) m.offset[s + 1] += m.offset[s];
+    m.index.resize(m.offset[surfaces]);
+    std::vector<std::uint32_t> fill(m.offset.begin(), m.offset.end() - 1);
+    for (std::size_t i = 0; i < labels.size(); ++i)
+        if (labels[i] >= 0 && is_finite(points[i]))
+            m.index[fill[static_cast<std::size_t>(labels[i])]++] = static_cast<std::uint32_t>(i);
+    return m;
+}
+
+// Adjacency of patches: member points within `reach` of each other, or home points within the
+// sum of the radii. Sorted, unique pairs (a < b).
+std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_pairs(
+    std::span<const Vec3f> points, std::span<const std::int32_t> labels,
+    std::span<const Surface> surfaces, const std::vector<std::uint8_t>& used, double reach,
+    int threads) {
+    std::vector<std::uint64_t> packed;
+    auto add = [&](std::uint32_t a, std::uint32_t b) {
+        if (a > b) std::swap(a, b);
+        packed.push_back((std::uint64_t{a} << 32) | b);
+    };
+    std::vector<std::uint8_t> include(points.size(), 0);
+    for (std::size_t i = 0; i < points.size(); ++i)
+        include[i] = labels[i] >= 0 && used[static_cast<std::size_t>(labels[i])] ? 1 : 0;
+    const CubeIndex index(points, reach, include, threads);
+    if (index.size() > 0) {
+        std::vector<std::int32_t> label(index.size());
+        const auto original = index.original_indices();
+        for (std::size_t i = 0; i < index.size(); ++i) label[i] = labels[original[i]];
+        const float r2 = static_cast<float>(reach * reach);
+        std::vector<CubeIndex::Range> table;
+        std::vector<std::uint64_t> local;
+        constexpr std::size_t kBatch = 4096;  // cubes per neighbour-table sweep: bounded memory
+        for (std::size_t c0 = 0; c0 < index.cube_count(); c0 += kBatch) {
+            const std::size_t c1 = std::min(index.cube_count(), c0 + kBatch);
+            index.neighbour_table(c0, c1, table);
+            for (std::size_t c = c0; c < c1; ++c) {
+                local.clear();
+                for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
+                    const Vec3f p = index.local_point(i);
+                    for (std::size_t k = 0; k < 9; ++k) {
+                        const CubeIndex::Range run = table[9 * (c - c0) + k];
+                        for (std::uint32_t j = std::max(run.begin, i + 1); j < run.end; ++j) {
+                            if (label[j] == label[i]) continue;
+                            if ((index.local_point(j) - p).squaredNorm() > r2) continue;
+                            auto a = static_cast<std::uint32_t>(label[i]);
+                            auto b = static_cast<std::uint32_t>(label[j]);
+                            if (a > b) std::swap(a, b);
+                            local.push_back((std::uint64_t{a} << 32) | b);
+                        }
+                    }
+                }
+                std::sort(local.begin(), local.end());
+                local.erase(std::unique(local.begin(), local.end()), local.end());
+                packed.insert(packed.end(), local.begin(), local.end());
+            }
+        }
+    }
+    // Home points within the sum of the radii.
+    std::vector<Vec3f> homes(surfaces.size());
+    std::vector<std::uint8_t> home_used(surfaces.size());
+    double max_radius = 0;
+    for (std::size_t s = 0; s < surfaces.size(); ++s) {
+        homes[s] = surfaces[s].home.cast<float>();
+        home_used[s] = used[s];
+        if (used[s]) max_radius = std::max(max_radius, surfaces[s].radius);
+    }
+    if (max_radius > 0) {
+        const CubeIndex hindex(homes, 2 * max_radius, home_used, 1);
+        const auto original = hindex.original_indices();
+        for (std::size_t s = 0; s < surfaces.size(); ++s) {
+            if (!used[s]) continue;
+            const Surface& a = surfaces[s];
+            hindex.for_each_within(a.home, a.radius + max_radius, [&](std::uint32_t j) {
+                const std::uint32_t t = original[j];
+                if (t <= s) return;
+                if ((surfaces[t].home - a.home).norm() <= a.radius + surfaces[t].radius)
+                    add(static_cast<std::uint32_t>(s), t);
+            });
+        }
+    }
+    std::sort(packed.begin(), packed.end());
+    packed.erase(std::unique(packed.begin(), packed.end()), packed.end());
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs(packed.size());
+    for (std::size_t k = 0; k < packed.size(); ++k)
+        pairs[k] = {static_cast<std::uint32_t>(packed[k] >> 32),
+                    static_cast<std::uint32_t>(packed[k] & 0xffffffffu)};
+    return pairs;
+}
+
+// A region of at most kFragmentPatches patches (a patch on an edge, a noisy patch whose normal
+// missed the angle test) whose member points lie, at least kFragmentFit of them, as close to an
+// adjacent larger region's plane as that region's own points do (within the offset, or twice
+// the region's RMS thickness if larger) joins that region: its points belong to the face,
+// and left alone it would punch a hole in the face's boundary. The target planes are fitted
+// before any fragment moves, so the outcome does not depend on the order.
+constexpr std::size_t kFragmentPatches = 2;
+constexpr double kFragmentFit = 0.8;
+
+void absorb_fragments(std::span<const Vec3f> points, const Members& members,
+                      const std::vector<std::uint32_t>& adj_off,
+                      const std::vector<std::uint32_t>& adj, const BoundPlaneConfig& cfg,
+                      std::vector<std::int32_t>& region,
+                      std::vector<std::vector<std::uint32_t>>& region_members,
+                      std::vector<CentredMoments>& region_moments,
+                      const std::vector<CentredMoments>& moments) {
+    const std::size_t nr = region_members.size();
+    std::vector<Plane> planes(nr);
+    std::vector<double> tolerance(nr);
+    for (std::size_t r = 0; r < nr; ++r) {
+        const CentredMoments& m = region_moments[r];
+        const Fit f = fit_moments(m);
+        planes[r] = Plane::through(m.mean, f.normal);
+        tolerance[r] = std::max(cfg.max_offset, 2 * std::sqrt(f.eigenvalues[0]));
+    }
+    std::vector<std::int32_t> target(nr, -1);
+    std::vector<std::int32_t> candidates;
+    for (std::size_t r = 0; r < nr; ++r) {
+        if (region_members[r].size() > kFragmentPatches) continue;
+        candidates.clear();
+        for (const std::uint32_t p : region_members[r])
+            for (std::uint32_t k = adj_off[p]; k < adj_off[p + 1]; ++k) {
+                const std::int32_t q = region[adj[k]];
+                if (region_members[static_cast<std::size_t>(q)].size() > kFragmentPatches)
+                    candidates.push_back(q);
+            }
+        std::sort(candidates.begin(), candidates.end());
+        candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+        double best = kFragmentFit;
+        for (const std::int32_t q : candidates) {
+            const Plane& plane = planes[static_cast<std::size_t>(q)];
+            std::size_t fit = 0, total = 0;
+            for (const std::uint32_t p : region_members[r])
+                for (const std::uint32_t i : members.of(p)) {
+                    ++total;
+                    fit += std::abs(plane.signed_distance(points[i].cast<double>())) <=
+                           tolerance[static_cast<std::size_t>(q)];
+                }
+            const double share = total ? double(fit) / double(total) : 0.0;
+            if (share >= best) {  // ties: the earlier (larger-seeded) region
+                if (share > best || target[r] < 0) target[r] = q;
+                best = share;
+            }
+        }
+    }
+    for (std::size_t r = 0; r < nr; ++r) {
+        if (target[r] < 0) continue;
+        const auto q = static_cast<std::size_t>(target[r]);
+        for (const std::uint32_t p : region_members[r]) {
+            region[p] = target[r];
+            region_members[q].push_back(p);
+            region_moments[q].merge(moments[p]);
+        }
+        region_members[r].clear();
+        region_moments[r] = CentredMoments{};
+    }
+}
+
+// Coplanar regions whose patches come within max_gap of each other (a face seen in bands between
+// occlusion shadows, a plate behind a stiffener) are one face: merged when both planes and their
+// pooled fit agree in angle, and each centroid lies within the offset of the pooled plane. Pairs
+// are tried in region order; pooled moments keep chains of merges from drifting.
+void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8_t>& used,
+                 const std::vector<std::int32_t>& region, const BoundPlaneConfig& cfg,
+                 std::vector<std::vector<std::uint32_t>>& region_members,
+                 std::vector<CentredMoments>& region_moments) {
+    const std::size_t nr = region_members.size();
+    if (cfg.max_gap <= 0 || nr < 2) return;
+    std::vector<Vec3f> homes(surfaces.size());
+    double max_radius = 0;
+    for (std::size_t s = 0; s < surfaces.size(); ++s) {
+        homes[s] = surfaces[s].home.cast<float>();
+        if (used[s]) max_radius = std::max(max_radius, surfaces[s].radius);
+    }
+    const CubeIndex index(homes, cfg.max_gap + 2 * max_radius, used, 1);
+    const auto original = index.original_indices();
+    std::vector<std::uint64_t> pairs;
+    for (std::size_t p = 0; p < surfaces.size(); ++p) {
+        if (!used[p]) continue;
+        const Surface& a = surfaces[p];
+        const auto ra = static_cast<std::uint32_t>(region[p]);
+        index.for_each_within(a.home, cfg.max_gap + a.radius + max_radius, [&](std::uint32_t j) {
+            const std::uint32_t q = original[j];
+            const auto rb = static_cast<std::uint32_t>(region[q]);
+            if (ra == rb || region_members[ra].empty() || region_members[rb].empty()) return;
+            if ((surfaces[q].home - a.home).norm() - a.radius - surfaces[q].radius > cfg.max_gap)
+                return;
+            pairs.push_back((std::uint64_t{std::min(ra, rb)} << 32) | std::max(ra, rb));
+        });
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    std::vector<std::uint32_t> parent(nr);
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto root = [&](std::uint32_t r) {
+        while (parent[r] != r) r = parent[r] = parent[parent[r]];
+        return r;
+    };
+    const double cos_max = std::cos(cfg.max_angle_deg * kDeg);
+    auto parallel = [&](const Vec3d& x, const Vec3d& y) { return std::abs(x.dot(y)) >= cos_max; };
+    for (const std::uint64_t key : pairs) {
+        const std::uint32_t a = root(static_cast<std::uint32_t>(key >> 32));
+        const std::uint32_t b = root(static_cast<std::uint32_t>(key & 0xffffffffu));
+        if (a == b) continue;
+        const CentredMoments &ma = region_moments[a], &mb = region_moments[b];
+        CentredMoments pooled = ma;
+        pooled.merge(mb);
+        const Fit fa = fit_moments(ma), fb = fit_moments(mb), fp = fit_moments(pooled);
+        if (fa.degenerate || fb.degenerate || fp.degenerate) continue;
+        if (!parallel(fa.normal, fb.normal) || !parallel(fa.normal, fp.normal) ||
+            !parallel(fb.normal, fp.normal))
+            continue;
+        if (std::abs(fp.normal.dot(ma.mean - pooled.mean)) > cfg.max_offset ||
+            std::abs(fp.normal.dot(mb.mean - pooled.mean)) > cfg.max_offset)
+            continue;
+        const std::uint32_t keep = std::min(a, b), gone = std::max(a, b);
+        parent[gone] = keep;
+        region_moments[keep] = pooled;
+        region_moments[gone] = CentredMoments{};
+        auto& list = region_members[keep];
+        list.insert(list.end(), region_members[gone].begin(), region_members[gone].end());
+        region_members[gone].clear();
+    }
+}
+
+// The in-plane axis of largest spread, with a deterministic sign.
+Vec3d principal_axis(const Vec3d& n, const Mat3d& scatter) {
+    const Vec3d e1 = n.unitOrthogonal();
+    const Vec3d e2 = n.cross(e1);
+    const double a = e1.dot(scatter * e1), b = e2.dot(scatter * e2), c = e1.dot(scatter * e2);
+    const double phi = 0.5 * std::atan2(2 * c, a - b);
+    Vec3d u = (std::cos(phi) * e1 + std::sin(phi) * e2).normalized();
+    Eigen::Index k = 0;
+    u.cwiseAbs().maxCoeff(&k);
+    return u[k] < 0 ? Vec3d(-u) : u;
+}
+
+}  // namespace
+
+void validate(const BoundPlaneConfig& c) {
+    if (!(c.mu > 0) || !std::isfinite(c.mu)) bad({"mu must be positive, got ", num(c.mu)});
+    if (!(c.max_angle_deg > 0 && c.max_angle_deg < 90))
+        bad({"plane angle must be between 0 and 90 degrees, got ", num(c.max_angle_deg)});
+    const std::pair<const char*, double> lengths[] = {{"plane offset", c.max_offset},
+                                                      {"adjacency distance", c.adjacency},
+                                                      {"boundary resolution", c.resolution},
+                                                      {"closing radius", c.closing_radius},
+                                                      {"simplify tolerance", c.simplify_tolerance}};
+    for (const auto& [name, v] : lengths)
+        if (!(v >= 0) || !std::isfinite(v)) bad({name, " must be >= 0 (0: default), got ", num(v)});
+    if (!std::isfinite(c.max_gap)) bad({"max gap must be finite, got ", num(c.max_gap)});
+    if (c.resolution > 0 && c.resolution < c.mu * 1e-3)
+        bad({"boundary resolution ", num(c.resolution), " is below mu / 1000"});
+    if (c.threads < 0) bad({"threads must be >= 0, got ", std::to_string(c.threads)});
+}
+
+std::vector<std::int32_t> plane_labels(const BoundPlanes& planes,
+                                       std::span<const std::int32_t> labels) {
+    std::vector<std::int32_t> out(labels.size(), -1);
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        const std::int32_t l = labels[i];
+        if (l >= 0 && static_cast<std::size_t>(l) < planes.plane_of_patch.size())
+            out[i] = planes.plane_of_patch[static_cast<std::size_t>(l)];
+    }
+    return out;
+}
+
+BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surface> surfaces,
+                                 std::span<const std::int32_t> labels,
+                                 const BoundPlaneConfig& config) {
+    validate(config);
+    if (labels.size() != cloud.size())
+        bad({"bound planes: ", std::to_string(labels.size()), " labels for ",
+             std::to_string(cloud.size()), " points"});
+    for (std::size_t i = 0; i < labels.size(); ++i)
+        if (labels[i] < -1 ||
+            (labels[i] >= 0 && static_cast<std::size_t>(labels[i]) >= surfaces.size()))
+            bad({"bound planes: point ", std::to_string(i), " has label ",
+                 std::to_string(labels[i]), " but there are ", std::to_string(surfaces.size()),
+                 " surfaces"});
+    for (std::size_t s = 0; s < surfaces.size(); ++s) {
+        const Surface& f = surfaces[s];
+        if (!f.normal.allFinite() || std::abs(f.normal.norm() - 1) > 1e-6 ||
+            !f.centroid.allFinite() || !f.home.allFinite() || !(f.radius > 0))
+            bad({"bound planes: surface ", std::to_string(s),
+                 " has a non-unit normal, a non-finite position or no radius"});
+    }
+    BoundPlanes out;
+    BoundPlaneConfig& cfg = out.config;
+    cfg = config;
+    const int threads = cfg.threads > 0 ? cfg.threads : omp_get_max_threads();
+    const std::size_t ns = surfaces.size();
+    out.plane_of_patch.assign(ns, -1);
+    out.stats.patches = ns;
+
+    // Member points and their moments per patch.
+    const Members members = collect_members(cloud.points, labels, ns);
+    std::vector<CentredMoments> moments(ns);
+    std::vector<std::uint8_t> used(ns, 0);
+    std::vector<double> thickness;
+    for (std::size_t s = 0; s < ns; ++s) {
+        const auto idx = members.of(s);
+        if (idx.empty()) continue;
+        used[s] = 1;
+        thickness.push_back(std::sqrt(std::max(surfaces[s].eigenvalues[0], 0.0)));
+        Vec3d sum = Vec3d::Zero();
+        Mat3d sq = Mat3d::Zero();
+        for (const std::uint32_t i : idx) {
+            const Vec3d d = cloud.points[i].cast<double>() - surfaces[s].home;
+            sum += d;
+            sq += d * d.transpose();
+        }
+        CentredMoments& m = moments[s];
+        m.n = double(idx.size());
+        m.mean = surfaces[s].home + sum / m.n;
+        m.scatter = sq - sum * sum.transpose() / m.n;
+    }
+    out.stats.noise = median_of(thickness);
+    if (cfg.max_offset == 0)
+        cfg.max_offset = std::clamp(3 * out.stats.noise, cfg.mu / 4, cfg.mu / 2);
+    if (cfg.adjacency == 0) cfg.adjacency = cfg.mu / 2;
+    if (cfg.max_gap == 0) cfg.max_gap = 5 * cfg.mu;
+    if (cfg.resolution == 0) cfg.resolution = cfg.mu / 2;
+    if (cfg.simplify_tolerance == 0) cfg.simplify_tolerance = cfg.resolution;
+    if (ns == 0 || members.index.empty()) return out;
+
+    // Patch graph, as CSR.
+    const auto pairs = adjacent_pairs(cloud.points, labels, surfaces, used, cfg.adjacency, threads);
+    out.stats.adjacent_pairs = pairs.size();
+    std::vector<std::uint32_t> adj_off(ns + 1, 0), adj;
+    for (const auto& [a, b] : pairs) {
+        ++adj_off[a + 1];
+        ++adj_off[b + 1];
+    }
+    for (std::size_t s = 0; s < ns; ++s) adj_off[s + 1] += adj_off[s];
+    adj.resize(adj_off[ns]);
+    {
+        std::vector<std::uint32_t> fill(adj_off.begin(), adj_off.end() - 1);
+        for (const auto& [a, b] : pairs) {  // pairs are sorted, so each list comes out ascending
+            adj[fill[a]++] = b;
+            adj[fill[b]++] = a;
+        }
+        for (std::size_t s = 0; s < ns; ++s)
+            std::sort(adj.begin() + adj_off[s], adj.begin() + adj_off[s + 1]);
+    }
+
+    // Region growing, seeds by decreasing member count.
+    const double cos_max = std::cos(cfg.max_angle_deg * kDeg);
+    const double off = cfg.max_offset;
+    auto parallel = [&](const Vec3d& a, const Vec3d& b) { return std::abs(a.dot(b)) >= cos_max; };
+    auto coplanar = [&](const Surface& p, const Surface& q) {
+        return parallel(p.normal, q.normal) &&
+               std::abs(q.plane().signed_distance(p.centroid)) <= off &&
+               std::abs(p.plane().signed_distance(q.centroid)) <= off;
+    };
+    std::vector<std::uint32_t> seeds;
+    for (std::uint32_t s = 0; s < ns; ++s)
+        if (used[s]) seeds.push_back(s);
+    std::stable_sort(seeds.begin(), seeds.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return members.of(a).size() > members.of(b).size();
+    });
+    std::vector<std::int32_t> region(ns, -1);
+    std::vector<std::vector<std::uint32_t>> region_members;
+    std::vector<CentredMoments> region_moments;
+    std::deque<std::uint32_t> queue;
+    for (const std::uint32_t seed : seeds) {
+        if (region[seed] >= 0) continue;
+        const auto r = static_cast<std::int32_t>(region_members.size());
+        std::vector<std::uint32_t> list{seed};
+        CentredMoments pooled = moments[seed];
+        Vec3d weighted = surfaces[seed].normal * pooled.n;  // fallback normal while collinear
+        auto region_normal = [&] {
+            const Fit f = fit_moments(pooled);
+            return f.degenerate ? Vec3d(weighted.normalized()) : f.normal;
+        };
+        Vec3d rn = region_normal();
+        region[seed] = r;
+        queue.assign(1, seed);
+        while (!queue.empty()) {
+            const std::uint32_t q = queue.front();
+            queue.pop_front();
+            for (std::uint32_t k = adj_off[q]; k < adj_off[q + 1]; ++k) {
+                const std::uint32_t p = adj[k];
+                if (region[p] >= 0) continue;
+                const Surface& sp = surfaces[p];
+                if (!coplanar(sp, surfaces[q]) || !parallel(sp.normal, rn) ||
+                    std::abs(rn.dot(sp.centroid - pooled.mean)) > off)
+                    continue;
+                region[p] = r;
+                list.push_back(p);
+                pooled.merge(moments[p]);
+                weighted += (sp.normal.dot(weighted) >= 0 ? 1.0 : -1.0) * moments[p].n * sp.normal;
+                rn = region_normal();
+                queue.push_back(p);
+            }
+        }
+        region_members.push_back(std::move(list));
+        region_moments.push_back(pooled);
+    }
+    absorb_fragments(cloud.points, members, adj_off, adj, cfg, region, region_members,
+                     region_moments, moments);
+    bridge_gaps(surfaces, used, region, cfg, region_members, region_moments);
+    std::erase_if(region_members, [](const std::vector<std::uint32_t>& l) { return l.empty(); });
+    std::erase_if(region_moments, [](const CentredMoments& m) { return m.n == 0; });
+    for (std::vector<std::uint32_t>& list : region_members) std::sort(list.begin(), list.end());
+
+    // Each region's plane, frame and boundary; independent, so in parallel.
+    const std::size_t nr = region_members.size();
+    std::vector<BoundPlane> planes(nr);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (std::size_t r = 0; r < nr; ++r) {
+        BoundPlane& bp = planes[r];
+        const std::vector<std::uint32_t>& list = region_members[r];
+        const CentredMoments& m = region_moments[r];
+        const Fit fit = fit_moments(m);
+        bp.patches = list;
+        bp.point_count = static_cast<std::uint64_t>(m.n);
+        bp.centroid = m.mean;
+        bp.degenerate = fit.degenerate;
+        Vec3d n = fit.normal;
+        if (fit.degenerate) {  // the patches' own normals, sign-aligned and point-weighted
+            Vec3d sum = Vec3d::Zero();
+            for (const std::uint32_t s : list)
+                sum += (surfaces[s].normal.dot(surfaces[list[0]].normal) >= 0 ? 1.0 : -1.0) *
+                       moments[s].n * surfaces[s].normal;
+            n = sum.norm() > 0 ? Vec3d(sum.normalized()) : surfaces[list[0]].normal;
+        }
+        // Orientation: the majority of the member patches' (sensor-facing) normals; a tie goes
+        // to the point-weighted vote, then to the first patch.
+        long votes = 0;
+        double weight = 0;
+        for (const std::uint32_t s : list) {
+            const double d = surfaces[s].normal.dot(n);
+            votes += d >= 0 ? 1 : -1;
+            weight += (d >= 0 ? 1 : -1) * moments[s].n;
+        }
+        const bool flip = votes != 0
+                              ? votes < 0
+                              : (weight != 0 ? weight < 0 : surfaces[list[0]].normal.dot(n) < 0);
+        bp.normal = flip ? Vec3d(-n) : n;
+        bp.rms = std::sqrt(std::max(0.0, bp.normal.dot(m.scatter * bp.normal) / m.n));
+        bp.u_axis = principal_axis(bp.normal, m.scatter);
+        bp.v_axis = bp.normal.cross(bp.u_axis);
+        std::vector<Vec2d> flat;
+        flat.reserve(bp.point_count);
+        std::vector<double> spacing;
+        for (const std::uint32_t s : list) {
+            for (const std::uint32_t i : members.of(s)) {
+                const Vec3d p = cloud.points[i].cast<double>();
+                bp.bounds.add(p);
+                flat.push_back(bp.to_plane(p));
+            }
+            const Surface& f = surfaces[s];
+            if (f.neighbours > 0)
+                spacing.push_back(std::sqrt(M_PI * f.radius * f.radius / double(f.neighbours)));
+        }
+        bp.closing_radius = cfg.closing_radius > 0
+                                ? cfg.closing_radius
+                                : std::max(cfg.resolution, 1.5 * median_of(std::move(spacing)));
+        const PlaneRaster raster = rasterise_points(flat, cfg.resolution, bp.closing_radius);
+        bp.polygons =
+            trace_boundaries(raster, cfg.simplify_tolerance, 2 * raster.cell * raster.cell);
+        for (const PolygonWithHoles& poly : bp.polygons) bp.area += polygon_area(poly);
+    }
+
+    // Largest first; ties by smallest member id (every plane has members, all distinct).
+    std::vector<std::size_t> order(nr);
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        if (planes[a].point_count != planes[b].point_count)
+            return planes[a].point_count > planes[b].point_count;
+        return planes[a].patches[0] < planes[b].patches[0];
+    });
+    out.planes.reserve(nr);
+    for (const std::size_t r : order) {
+        const auto id = static_cast<std::int32_t>(out.planes.size());
+        for (const std::uint32_t s : planes[r].patches) out.plane_of_patch[s] = id;
+        out.stats.patches_merged += planes[r].patches.size();
+        out.stats.points += planes[r].point_count;
+        out.stats.degenerate += planes[r].degenerate ? 1 : 0;
+        out.stats.area += planes[r].area;
+        out.planes.push_back(std::move(planes[r]));
+    }
+    return out;
+}
+
+}  // namespace surfgrow

@@ -1,0 +1,290 @@
+#include "surfgrow/io/coverage_io.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/text.hpp"
+#include "surfgrow/io/file_bytes.hpp"
+#include "surfgrow/io/json_fields.hpp"
+#include "surfgrow/io/output_buffer.hpp"
+
+namespace surfgrow::io {
+
+namespace {
+
+using namespace json_fields;
+
+Eigen::Quaterniond quaternion_of(double w, double x, double y, double z) {
+    const Eigen::Quaterniond q(w, x, y, z);
+    if (!std::isfinite(q.norm()) || std::abs(q.norm() - 1.0) > 1e-6)
+        throw std::invalid_argument("its orientation is not a unit quaternion");
+    return q;
+}
+
+}  // namespace
+
+void write_coverage_json(std::ostream& out, const CoveragePlan& plan, const ResultMeta& meta) {
+    const CoverageConfig& c = plan.config;
+    const CoverageStats& s = plan.stats;
+    ordered_json doc = {
+        {"format", "surfgrow-coverage"},
+        {"version", 1},
+        {"units", meta.units},
+        {"offset", vec_json(meta.offset)},
+        {"input", meta.input},
+        {"parameters",
+         {{"blast_radius", c.blast_radius},
+          {"standoff", c.standoff},
+          {"angle_band_deg", {c.min_angle_deg, c.max_angle_deg}},
+          {"tilt_deg", c.tilt_deg.value_or(c.min_angle_deg)},
+          {"sample_spacing", c.sample_spacing},
+          {"start", c.start ? vec_json(*c.start + meta.offset) : ordered_json(nullptr)}}},
+        {"summary",
+         {{"goals", s.goals},
+          {"planes", s.planes},
+          {"transitions", s.transitions},
+          {"area", s.area},
+          {"covered_area", s.covered_area},
+          {"coverage", s.coverage},
+          {"tool_path_length", s.tool_path_length},
+          {"sweep_length", s.sweep_length},
+          {"transition_length", s.transition_length},
+          {"goal_path_length", s.goal_path_length}}},
+    };
+    // The head indented, then one line per plane and per goal (there may be 100 000 goals).
+    std::string text = doc.dump(1);
+    text.pop_back();  // the closing brace
+    while (!text.empty() && text.back() == '\n') text.pop_back();
+    text += ",\n \"planes\": [";
+    for (std::size_t k = 0; k < plan.per_plane.size(); ++k) {
+        const PlaneCoverage& p = plan.per_plane[k];
+        const ordered_json row = {{"plane", p.plane},
+                                  {"goals", p.goals},
+                                  {"first_goal", p.first_goal},
+                                  {"area", p.area},
+                                  {"covered_fraction", p.covered_fraction}};
+        text += k ? ",\n  " : "\n  ";
+        text += row.dump();
+    }
+    text += plan.per_plane.empty() ? "],\n \"goals\": [" : "\n ],\n \"goals\": [";
+    OutputBuffer buf(out);
+    buf.append(text);
+    auto put_vec = [&](const Vec3d& v) {
+        buf.put('[');
+        for (int a = 0; a < 3; ++a) {
+            if (a) buf.put(',');
+            buf.put_number(v[a]);
+        }
+        buf.put(']');
+    };
+    for (std::size_t k = 0; k < plan.goals.size(); ++k) {
+        const CoverageGoal& g = plan.goals[k];
+        buf.append(k ? ",\n  {\"seq\":" : "\n  {\"seq\":");
+        buf.put_number(k);
+        buf.append(",\"plane\":");
+        buf.put_number(g.plane);
+        buf.append(",\"row\":");
+        buf.put_number(g.row);
+        buf.append(",\"position\":");
+        put_vec(g.position + meta.offset);
+        buf.append(",\"normal\":");
+        put_vec(g.normal);
+        buf.append(",\"direction\":");
+        put_vec(g.direction);
+        buf.append(",\"tool_position\":");
+        put_vec(g.tool_position + meta.offset);
+        buf.append(",\"tool_axis\":");
+        put_vec(g.tool_axis);
+        buf.append(",\"orientation\":[");
+        const Eigen::Quaterniond& q = g.orientation;
+        const double wxyz[4] = {q.w(), q.x(), q.y(), q.z()};
+        for (int a = 0; a < 4; ++a) {
+            if (a) buf.put(',');
+            buf.put_number(wxyz[a]);
+        }
+        buf.append("],\"tilt_deg\":");
+        buf.put_number(g.tilt_deg);
+        buf.append(g.from_home ? ",\"from_home\":true" : ",\"from_home\":false");
+        buf.append(g.transition ? ",\"transition\":true}" : ",\"transition\":false}");
+    }
+    buf.append(plan.goals.empty() ? "]\n}\n" : "\n ]\n}\n");
+    buf.flush();
+}
+
+void write_coverage_csv(std::ostream& out, const CoveragePlan& plan, const ResultMeta& meta) {
+    OutputBuffer buf(out);
+    buf.append(kCoverageCsvHeader);
+    buf.put('\n');
+    for (std::size_t k = 0; k < plan.goals.size(); ++k) {
+        const CoverageGoal& g = plan.goals[k];
+        buf.put_number(k);
+        buf.put(',');
+        buf.put_number(g.plane);
+        buf.put(',');
+        buf.put_number(g.row);
+        auto field = [&](double v) {
+            buf.put(',');
+            buf.put_number(v);
+        };
+        for (int a = 0; a < 3; ++a) field(g.position[a] + meta.offset[a]);
+        for (int a = 0; a < 3; ++a) field(g.normal[a]);
+        for (int a = 0; a < 3; ++a) field(g.tool_position[a] + meta.offset[a]);
+        for (int a = 0; a < 3; ++a) field(g.tool_axis[a]);
+        field(g.orientation.w());
+        field(g.orientation.x());
+        field(g.orientation.y());
+        field(g.orientation.z());
+        field(g.tilt_deg);
+        buf.append(g.transition ? ",1" : ",0");
+        buf.append(g.from_home ? ",1\n" : ",0\n");
+    }
+    buf.flush();
+}
+
+StoredCoverage read_coverage_json(const std::filesystem::path& file) {
+    const json j = parse_file(file);
+    StoredCoverage r;
+    CoveragePlan& plan = r.plan;
+    std::string where = "the header";
+    try {
+        if (!j.is_object() || j.value("format", "") != "surfgrow-coverage")
+            malformed(file, "not a surfgrow coverage file (no \"format\": \"surfgrow-coverage\")");
+        if (j.at("version").get<int>() != 1) malformed(file, "only version 1 is supported");
+        r.meta.units = string_of(j.at("units"), "units");
+        r.meta.offset = vec_of(j.at("offset"), "offset");
+        r.meta.input = j.contains("input") ? string_of(j.at("input"), "input") : std::string();
+        const json& p = j.at("parameters");
+        CoverageConfig& c = plan.config;
+        c.blast_radius = p.at("blast_radius").get<double>();
+        c.standoff = p.at("standoff").get<double>();
+        const json& band = p.at("angle_band_deg");
+        if (!band.is_array() || band.size() != 2)
+            throw std::invalid_argument("angle_band_deg is not [min, max]");
+        c.min_angle_deg = band[0].get<double>();
+        c.max_angle_deg = band[1].get<double>();
+        c.tilt_deg = p.at("tilt_deg").get<double>();
+        c.sample_spacing = p.at("sample_spacing").get<double>();
+        if (!p.at("start").is_null()) c.start = vec_of(p.at("start"), "start") - r.meta.offset;
+        validate(c);
+        const json& s = j.at("summary");
+        CoverageStats& st = plan.stats;
+        st.goals = s.at("goals").get<std::uint64_t>();
+        st.planes = s.at("planes").get<std::uint64_t>();
+        st.transitions = s.at("transitions").get<std::uint64_t>();
+        st.area = s.at("area").get<double>();
+        st.covered_area = s.at("covered_area").get<double>();
+        st.coverage = s.at("coverage").get<double>();
+        st.tool_path_length = s.at("tool_path_length").get<double>();
+        st.sweep_length = s.at("sweep_length").get<double>();
+        st.transition_length = s.at("transition_length").get<double>();
+        st.goal_path_length = s.at("goal_path_length").get<double>();
+        for (const json& jp : j.at("planes"))
+            plan.per_plane.push_back(
+                {jp.at("plane").get<std::uint32_t>(), jp.at("goals").get<std::uint32_t>(),
+                 jp.at("first_goal").get<std::uint32_t>(), jp.at("area").get<double>(),
+                 jp.at("covered_fraction").get<double>()});
+        const json& goals = j.at("goals");
+        if (!goals.is_array() || goals.size() != st.goals)
+            throw std::invalid_argument(cat({"the summary says ", std::to_string(st.goals),
+                                             " goals but the list does not hold that many"}));
+        for (std::size_t k = 0; k < goals.size(); ++k) {
+            where = cat({"goal ", std::to_string(k)});
+            const json& jg = goals[k];
+            CoverageGoal g;
+            g.plane = jg.at("plane").get<std::uint32_t>();
+            g.row = jg.at("row").get<std::uint32_t>();
+            g.position = vec_of(jg.at("position"), "its position") - r.meta.offset;
+            g.normal = vec_of(jg.at("normal"), "its normal");
+            g.direction = vec_of(jg.at("direction"), "its direction");
+            g.tool_position = vec_of(jg.at("tool_position"), "its tool position") - r.meta.offset;
+            g.tool_axis = vec_of(jg.at("tool_axis"), "its tool axis");
+            check_unit(g.normal, "its normal");
+            check_unit(g.tool_axis, "its tool axis");
+            const json& q = jg.at("orientation");
+            if (!q.is_array() || q.size() != 4)
+                throw std::invalid_argument("its orientation is not [w, x, y, z]");
+            g.orientation = quaternion_of(q[0].get<double>(), q[1].get<double>(),
+                                          q[2].get<double>(), q[3].get<double>());
+            g.tilt_deg = jg.at("tilt_deg").get<double>();
+            g.from_home = jg.at("from_home").get<bool>();
+            g.transition = jg.at("transition").get<bool>();
+            plan.goals.push_back(g);
+        }
+    } catch (const json::exception& e) {
+        malformed(file, cat({where, ": missing or mistyped field: ", e.what()}));
+    } catch (const std::invalid_argument& e) {
+        malformed(file, cat({where, ": ", e.what()}));
+    } catch (const Error& e) {
+        malformed(file, cat({where, ": ", e.what()}));
+    }
+    return r;
+}
+
+std::vector<CoverageGoal> read_coverage_csv(const std::filesystem::path& file,
+                                            const Vec3d& offset) {
+    const FileBytes bytes = FileBytes::read(file);
+    std::string_view text = bytes.view();
+    std::vector<CoverageGoal> goals;
+    std::size_t line_no = 0;
+    auto next_line = [&](std::string_view& line) {
+        if (text.empty()) return false;
+        const std::size_t nl = text.find('\n');
+        line = text.substr(0, nl);
+        text = nl == std::string_view::npos ? std::string_view() : text.substr(nl + 1);
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        ++line_no;
+        return true;
+    };
+    auto bad = [&](std::string_view what) {
+        malformed(file, cat({"line ", std::to_string(line_no), ": ", what}));
+    };
+    std::string_view line;
+    if (!next_line(line) || line != kCoverageCsvHeader)
+        malformed(file, cat({"line 1 is not the coverage.csv header (", kCoverageCsvHeader, ")"}));
+    constexpr std::size_t kFields = 22;
+    double f[kFields];
+    while (next_line(line)) {
+        if (line.empty()) continue;
+        std::size_t n = 0;
+        std::string_view rest = line;
+        while (true) {
+            const std::size_t comma = rest.find(',');
+            const std::string_view field = rest.substr(0, comma);
+            if (n == kFields) bad(cat({"more than ", std::to_string(kFields), " fields"}));
+            const auto r = std::from_chars(field.data(), field.data() + field.size(), f[n]);
+            if (r.ec != std::errc() || r.ptr != field.data() + field.size() || !std::isfinite(f[n]))
+                bad(cat({"field ", std::to_string(n + 1), " is not a finite number"}));
+            ++n;
+            if (comma == std::string_view::npos) break;
+            rest.remove_prefix(comma + 1);
+        }
+        if (n != kFields)
+            bad(cat({std::to_string(n), " fields where ", std::to_string(kFields), " are needed"}));
+        if (f[1] < 0 || f[2] < 0 || f[1] != std::floor(f[1]) || f[2] != std::floor(f[2]))
+            bad("plane and row must be whole numbers >= 0");
+        CoverageGoal g;
+        g.plane = static_cast<std::uint32_t>(f[1]);
+        g.row = static_cast<std::uint32_t>(f[2]);
+        g.position = Vec3d(f[3], f[4], f[5]) - offset;
+        g.normal = Vec3d(f[6], f[7], f[8]);
+        g.tool_position = Vec3d(f[9], f[10], f[11]) - offset;
+        g.tool_axis = Vec3d(f[12], f[13], f[14]);
+        try {
+            check_unit(g.normal, "the normal");
+            check_unit(g.tool_axis, "the tool axis");
+            g.orientation = quaternion_of(f[15], f[16], f[17], f[18]);
+        } catch (const std::invalid_argument& e) {
+            bad(e.what());
+        }
+        g.tilt_deg = f[19];
+        g.transition = f[20] != 0;
+        g.from_home = f[21] != 0;
+        goals.push_back(g);
+    }
+    return goals;
+}
+
+}  // namespace surfgrow::io
