@@ -114,40 +114,46 @@ std::uint32_t CollisionSpheres::build(std::vector<std::uint32_t>& order, std::ui
     return index;
 }
 
-Proximity CollisionSpheres::query(const Capsule& q, Mode mode, double tolerance,
+template <CollisionSpheres::Mode kMode, bool kPoint>
+Proximity CollisionSpheres::query(const Capsule& q, double tolerance,
                                   std::vector<std::uint32_t>* all) const {
     Proximity best;
     if (nodes_.empty()) return best;
     const Vec3d smin = q.a.cwiseMin(q.b), smax = q.a.cwiseMax(q.b);
-    const bool is_point = q.a == q.b;
     // Lower bound on the clearance of any sphere in node n: the distance from the segment to the
     // box of n's centres, less n's largest radius and the query's. The distance is bounded below
     // by the gap between the segment's box and n's box (exact for a sphere query), and for a
     // capsule also by the distance to n's box centre less its half diagonal, when the first is
     // not enough to prune.
     auto bound = [&](const Node& n, double limit) {
-        double g2 = 0, h2 = 0;
-        Vec3d centre;
+        double g2 = 0;
         for (int a = 0; a < 3; ++a) {
             const double lo = n.lo[a], hi = n.hi[a];
-            const double gap = std::max({lo - smax[a], smin[a] - hi, 0.0});
+            const double gap = std::max(std::max(lo - smax[a], smin[a] - hi), 0.0);
             g2 += gap * gap;
-            centre[a] = 0.5 * (lo + hi);
-            h2 += (hi - lo) * (hi - lo);
         }
         const double pad = q.radius + static_cast<double>(n.rmax);
         double lb = std::sqrt(g2) - pad;
-        if (!is_point && lb <= limit) {
-            const double ball = point_segment_distance(centre, q.a, q.b) - 0.5 * std::sqrt(h2);
-            if (std::isfinite(ball)) lb = std::max(lb, ball - pad);
+        if constexpr (!kPoint) {
+            if (lb <= limit) {
+                Vec3d centre;
+                double h2 = 0;
+                for (int a = 0; a < 3; ++a) {
+                    const double lo = n.lo[a], hi = n.hi[a];
+                    centre[a] = 0.5 * (lo + hi);
+                    h2 += (hi - lo) * (hi - lo);
+                }
+                const double ball = point_segment_distance(centre, q.a, q.b) - 0.5 * std::sqrt(h2);
+                if (std::isfinite(ball)) lb = std::max(lb, ball - pad);
+            }
         }
         return lb;
     };
     // Nearest: prune what cannot beat or tie the best; any/all: what cannot come under tolerance.
+    auto limit = [&] { return kMode == Mode::kNearest ? best.clearance : tolerance; };
     auto pruned = [&](double lb) {
-        return mode == Mode::kNearest ? lb > best.clearance : lb >= tolerance;
+        return kMode == Mode::kNearest ? lb > best.clearance : lb >= tolerance;
     };
-    auto limit = [&] { return mode == Mode::kNearest ? best.clearance : tolerance; };
 
     std::array<std::uint32_t, kMaxDepth + 2> stack_node{};
     std::array<double, kMaxDepth + 2> stack_bound{};
@@ -167,14 +173,14 @@ Proximity CollisionSpheres::query(const Capsule& q, Mode mode, double tolerance,
                 for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
                     const double d = clearance(leaf_[k], q);
                     const std::uint32_t id = leaf_id_[k];
-                    if (mode == Mode::kNearest) {
+                    if constexpr (kMode == Mode::kNearest) {
                         if (d < best.clearance ||
                             (d == best.clearance && std::int64_t{id} < best.nearest)) {
                             best.clearance = d;
                             best.nearest = id;
                         }
                     } else if (d < tolerance) {
-                        if (mode == Mode::kAny) return {d, id};
+                        if constexpr (kMode == Mode::kAny) return {d, id};
                         all->push_back(id);
                     }
                 }
@@ -199,13 +205,20 @@ Proximity CollisionSpheres::query(const Capsule& q, Mode mode, double tolerance,
     return best;
 }
 
+template <CollisionSpheres::Mode kMode>
+Proximity CollisionSpheres::dispatch(const Capsule& q, double tolerance,
+                                     std::vector<std::uint32_t>* all) const {
+    return q.a == q.b ? query<kMode, true>(q, tolerance, all)
+                      : query<kMode, false>(q, tolerance, all);
+}
+
 Proximity CollisionSpheres::nearest(const Sphere& query_sphere) const {
     return nearest(Capsule::of(query_sphere));
 }
 
 Proximity CollisionSpheres::nearest(const Capsule& q) const {
     check_query(q);
-    return query(q, Mode::kNearest, 0.0, nullptr);
+    return dispatch<Mode::kNearest>(q, 0.0, nullptr);
 }
 
 bool CollisionSpheres::collides(const Sphere& query_sphere, double tolerance) const {
@@ -215,14 +228,14 @@ bool CollisionSpheres::collides(const Sphere& query_sphere, double tolerance) co
 bool CollisionSpheres::collides(const Capsule& q, double tolerance) const {
     check_query(q);
     check_tolerance(tolerance);
-    return query(q, Mode::kAny, tolerance, nullptr).nearest >= 0;
+    return dispatch<Mode::kAny>(q, tolerance, nullptr).nearest >= 0;
 }
 
 std::vector<std::uint32_t> CollisionSpheres::colliding(const Capsule& q, double tolerance) const {
     check_query(q);
     check_tolerance(tolerance);
     std::vector<std::uint32_t> ids;
-    query(q, Mode::kAll, tolerance, &ids);
+    dispatch<Mode::kAll>(q, tolerance, &ids);
     std::sort(ids.begin(), ids.end());
     return ids;
 }

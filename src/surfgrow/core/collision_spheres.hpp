@@ -82,8 +82,10 @@ class CollisionSpheres {
     enum class Mode { kNearest, kAny, kAll };
     std::uint32_t build(std::vector<std::uint32_t>& order, std::uint32_t begin, std::uint32_t end,
                         int depth);
-    Proximity query(const Capsule& q, Mode mode, double tolerance,
-                    std::vector<std::uint32_t>* all) const;
+    template <Mode kMode, bool kPoint>
+    Proximity query(const Capsule& q, double tolerance, std::vector<std::uint32_t>* all) const;
+    template <Mode kMode>
+    Proximity dispatch(const Capsule& q, double tolerance, std::vector<std::uint32_t>* all) const;
 
     std::vector<Sphere> spheres_;         // by id
     std::vector<Sphere> leaf_;            // in leaf order
