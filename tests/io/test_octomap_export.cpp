@@ -34,8 +34,7 @@ std::set<KeyTuple> leaves(const octomap::OcTree& tree, bool occupied) {
                              k[2] - span / 2 * (span > 1)};
         for (int x = 0; x < span; ++x)
             for (int y = 0; y < span; ++y)
-                for (int z = 0; z < span; ++z)
-                    out.insert({base[0] + x, base[1] + y, base[2] + z});
+                for (int z = 0; z < span; ++z) out.insert({base[0] + x, base[1] + y, base[2] + z});
     }
     return out;
 }
@@ -64,7 +63,8 @@ const RoomCorner& room_corner() {
         spec.tilt.step_deg = 2.0 / 3.0;  // half the paper's rows: fast, still dense at 1 m
         spec.tilt.positions = 180;
         const scanner::Pose pose = scene.description().scanner.home;
-        std::vector<scanner::RawScan> raws{scanner::ScanSimulator(scene, spec).simulate(pose, 1).raw};
+        std::vector<scanner::RawScan> raws{
+            scanner::ScanSimulator(scene, spec).simulate(pose, 1).raw};
         r.cloud = scanner::fuse_scans(raws);
         r.origin = pose.translation();
         r.config.mu = 0.02;
@@ -78,8 +78,8 @@ const RoomCorner& room_corner() {
 std::string export_bt(const RoomCorner& rc, const SensorOrigins& origins,
                       io::OctomapSummary* summary = nullptr) {
     std::ostringstream out;
-    const io::OctomapSummary s =
-        io::write_octomap_bt(out, rc.grid, rc.cloud, grown_point_mask(rc.cloud, rc.config), origins);
+    const io::OctomapSummary s = io::write_octomap_bt(
+        out, rc.grid, rc.cloud, grown_point_mask(rc.cloud, rc.config), origins);
     if (summary) *summary = s;
     return out.str();
 }
@@ -101,7 +101,8 @@ TEST(OctomapExport, LoadsBackWithTheGridsOccupiedCells) {
         expected.insert({k[0], k[1], k[2]});
         // That leaf's centre lies within half a leaf of the cube's centre on each axis.
         const octomap::point3d leaf = tree.keyToCoord(k);
-        for (int a = 0; a < 3; ++a) EXPECT_LE(std::abs(double(leaf(a)) - p[a]), 0.5 * rc.config.mu + 1e-6);
+        for (int a = 0; a < 3; ++a)
+            EXPECT_LE(std::abs(double(leaf(a)) - p[a]), 0.5 * rc.config.mu + 1e-6);
     }
     const std::set<KeyTuple> occupied = leaves(tree, true);
     EXPECT_EQ(occupied.size(), rc.grid.size());
@@ -127,8 +128,8 @@ TEST(OctomapExport, FreeBetweenScannerAndWallsUnknownBehindThem) {
         for (double t = 0.0; t < length - 3 * mu; t += 0.5 * mu) {
             const Vec3d p = rc.origin + t * dir;
             const octomap::OcTreeNode* node = tree.search(p.x(), p.y(), p.z());
-            ASSERT_NE(node, nullptr) << "unknown at " << p.transpose() << " toward "
-                                     << target.transpose();
+            ASSERT_NE(node, nullptr)
+                << "unknown at " << p.transpose() << " toward " << target.transpose();
             ASSERT_FALSE(tree.isNodeOccupied(node)) << "occupied at " << p.transpose();
             ++free_checked;
         }
@@ -143,8 +144,8 @@ TEST(OctomapExport, FreeBetweenScannerAndWallsUnknownBehindThem) {
         // Behind it nothing was seen: unknown.
         for (double t = 3 * mu; t < 0.3; t += mu) {
             const Vec3d p = target + t * dir;
-            EXPECT_EQ(tree.search(p.x(), p.y(), p.z()), nullptr) << "known behind the wall at "
-                                                                  << p.transpose();
+            EXPECT_EQ(tree.search(p.x(), p.y(), p.z()), nullptr)
+                << "known behind the wall at " << p.transpose();
         }
     }
     EXPECT_GT(free_checked, 500);
@@ -191,6 +192,10 @@ TEST(OctomapExport, EmptyGridGivesAnEmptyMap) {
     const octomap::OcTree tree = load(out.str());
     EXPECT_EQ(tree.size(), 0u);
     EXPECT_DOUBLE_EQ(tree.getResolution(), config.mu);
+    // The resolution is written at full precision: 1/300 reads back exactly.
+    std::ostringstream third;
+    (void)io::write_octomap_bt(third, OccupancyGrid(1.0 / 300), cloud, {}, SensorOrigins{});
+    EXPECT_EQ(load(third.str()).getResolution(), 1.0 / 300);
 }
 
 TEST(OctomapExport, CellsBeyondOctomapsRangeAreAClearError) {

@@ -37,8 +37,9 @@ void write_collision_spheres_json(std::ostream& out, const CollisionSpheres& sph
         {"version", 1},
         {"units", meta.units},
         {"input", meta.input},
-        {"what", "one sphere per surface: centre at its home point, radius its neighbourhood "
-                 "radius (paper 5.5); id = surface id; rows are [x, y, z, radius]"},
+        {"what",
+         "one sphere per surface: centre at its home point, radius its neighbourhood "
+         "radius (paper 5.5); id = surface id; rows are [x, y, z, radius]"},
         {"count", spheres.size()},
         {"radius", {{"min", rmin}, {"max", rmax}}},
     };

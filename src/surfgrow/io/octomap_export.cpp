@@ -108,7 +108,19 @@ OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
     for (const std::uint64_t key : occupied)
         tree.setNodeValue(unpack(key), tree.getClampingThresMaxLog(), true);
     tree.updateInnerOccupancy();
-    if (!tree.writeBinary(out) || !out)
+    // OcTree::writeBinary() less its " done." on stderr, and with the resolution at full
+    // precision (the library prints 6 digits, so a resolution like 1/300 would read back off).
+    tree.toMaxLikelihood();
+    tree.prune();
+    const auto precision = out.precision(17);
+    out << "# Octomap OcTree binary file\n"
+        << "# (feel free to add / change comments, but leave the first line as it is!)\n#\n"
+        << "# written by surfgrow: occupied = registered points' cubes, free = carved by rays\n"
+        << "id " << tree.getTreeType() << "\nsize " << tree.size() << "\nres "
+        << tree.getResolution() << "\ndata\n";
+    out.precision(precision);
+    tree.writeBinaryData(out);
+    if (!out)
         throw Error(ErrorCode::kCannotWrite, "environment.bt: the OctoMap could not be written");
     summary.occupied = leaves_at_full_depth(tree, true);
     summary.free = leaves_at_full_depth(tree, false);

@@ -13,10 +13,10 @@ namespace surfgrow::io {
 
 /// What went into an OctoMap export.
 struct OctomapSummary {
-    double resolution = 0.0;       ///< OctoMap's leaf size: mu
-    std::uint64_t occupied = 0;    ///< occupied leaves at full depth (= the grid's occupied cubes)
-    std::uint64_t free = 0;        ///< free leaves at full depth, carved by rays
-    std::uint64_t rays = 0;        ///< rays cast (one per sensor origin and end cell)
+    double resolution = 0.0;     ///< OctoMap's leaf size: mu
+    std::uint64_t occupied = 0;  ///< occupied leaves at full depth (= the grid's occupied cubes)
+    std::uint64_t free = 0;      ///< free leaves at full depth, carved by rays
+    std::uint64_t rays = 0;      ///< rays cast (one per sensor origin and end cell)
     SensorOrigins::Source carving = SensorOrigins::Source::kNone;
 };
 

@@ -67,7 +67,8 @@ RobotModel parse_robot_json(std::string_view text, std::string_view source,
     } catch (const Json::exception& e) {
         throw_malformed(source, cat({"not valid JSON: ", e.what()}));
     }
-    if (!j.is_object()) throw_malformed(source, "expected a JSON object with \"units\" and \"links\"");
+    if (!j.is_object())
+        throw_malformed(source, "expected a JSON object with \"units\" and \"links\"");
     for (const auto& [key, value] : j.items()) {
         if (key != "format" && key != "version" && key != "units" && key != "links" &&
             key != "comment")

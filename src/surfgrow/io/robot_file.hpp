@@ -1,4 +1,5 @@
-// robot.json: a robot's collision model as named spheres and capsules (docs/occupancy-and-collision.md).
+// robot.json: a robot's collision model as named spheres and capsules
+// (docs/occupancy-and-collision.md).
 #pragma once
 
 #include <filesystem>

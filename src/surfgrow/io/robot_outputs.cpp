@@ -27,7 +27,8 @@ OccupancySummary add_occupancy_outputs(OutputTransaction& tx, const PointCloud& 
     }
     if (which.json)
         tx.add("occupancy.json", [&](std::ostream& o) {
-            write_occupancy_json(o, grid, meta, summary.octomap_written ? &summary.octomap : nullptr);
+            write_occupancy_json(o, grid, meta,
+                                 summary.octomap_written ? &summary.octomap : nullptr);
         });
     return summary;
 }

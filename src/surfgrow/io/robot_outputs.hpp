@@ -46,7 +46,6 @@ inline OccupancySummary add_occupancy_outputs(OutputTransaction& tx, const Point
 }
 
 /// Stages collision_spheres.json: one sphere per surface at its home point, radius mu.
-void add_collision_outputs(OutputTransaction& tx, const GrowResult& result,
-                           const ResultMeta& meta);
+void add_collision_outputs(OutputTransaction& tx, const GrowResult& result, const ResultMeta& meta);
 
 }  // namespace surfgrow::io
