@@ -17,6 +17,7 @@ enum class ErrorCode : int {
     kMalformedInput = 6,  ///< a file that claims a format but breaks it (bad header, truncated)
     kCannotWrite = 7,     ///< an output could not be written (permissions, disk full)
     kCloudTooLarge = 8,   ///< the cloud cannot be indexed at this mu (extent / mu too large)
+    kCollision = 9,       ///< `collide --fail-on-collision`: a robot link is too close
 };
 
 /// Exception carrying an ErrorCode and a message meant for the user. Messages name the file
