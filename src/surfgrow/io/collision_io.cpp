@@ -10,7 +10,7 @@ namespace surfgrow::io {
 
 namespace {
 
-using Json = nlohmann::json;
+using Json = nlohmann::ordered_json;
 
 Json vec_json(const Vec3d& v) {
     return Json::array({v.x(), v.y(), v.z()});

@@ -9,8 +9,8 @@ namespace surfgrow::io {
 
 namespace {
 
-nlohmann::json vec_json(const Vec3d& v) {
-    return nlohmann::json::array({v.x(), v.y(), v.z()});
+nlohmann::ordered_json vec_json(const Vec3d& v) {
+    return nlohmann::ordered_json::array({v.x(), v.y(), v.z()});
 }
 
 }  // namespace
@@ -60,7 +60,7 @@ void write_occupancy_ply(std::ostream& out, const OccupancyGrid& grid, const Res
 void write_occupancy_json(std::ostream& out, const OccupancyGrid& grid, const ResultMeta& meta,
                           const OctomapSummary* octomap) {
     const Aabb b = grid.bounds();
-    nlohmann::json j = {
+    nlohmann::ordered_json j = {
         {"format", "surfgrow-occupancy"},
         {"version", 1},
         {"units", meta.units},
@@ -73,9 +73,9 @@ void write_occupancy_json(std::ostream& out, const OccupancyGrid& grid, const Re
          "occupancy.ply lists the centres, origin + (i + 0.5, j + 0.5, k + 0.5) * cube_size"},
         {"occupied_cubes", grid.size()},
         {"registered_points", grid.registered_points()},
-        {"bounds", b.empty() ? nlohmann::json(nullptr)
-                             : nlohmann::json{{"min", vec_json(b.min + meta.offset)},
-                                              {"max", vec_json(b.max + meta.offset)}}},
+        {"bounds", b.empty() ? nlohmann::ordered_json(nullptr)
+                             : nlohmann::ordered_json{{"min", vec_json(b.min + meta.offset)},
+                                                      {"max", vec_json(b.max + meta.offset)}}},
     };
     if (octomap) {
         j["octomap"] = {
