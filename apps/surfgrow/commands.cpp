@@ -20,6 +20,8 @@ void add_all_commands(CLI::App& app) {
     add_grow_command(app);
     add_planes_command(app);
     add_coverage_command(app);
+    add_occupancy_command(app);
+    add_collide_command(app);
     add_scan_command(app);
     add_scan2cloud_command(app);
     add_eval_command(app);

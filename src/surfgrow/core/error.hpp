@@ -19,6 +19,7 @@ enum class ErrorCode : int {
     kCloudTooLarge = 8,   ///< the cloud cannot be indexed at this mu (extent / mu too large)
     /// A bound given to `surfgrow eval --require` does not hold (the evaluation is still written).
     kRequirementFailed = 9,
+    kCollision = 10,  ///< `collide --fail-on-collision`: a robot link is too close
 };
 
 /// Exception carrying an ErrorCode and a message meant for the user. Messages name the file

@@ -1,0 +1,116 @@
+// `surfgrow occupancy OUT --cloud CLOUD`: the occupancy grid and OctoMap of an existing result.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/text.hpp"
+#include "surfgrow/io/cloud_io.hpp"
+#include "surfgrow/io/result_workspace.hpp"
+#include "surfgrow/io/results_io.hpp"
+#include "surfgrow/io/robot_outputs.hpp"
+
+namespace surfgrow::cli {
+
+namespace {
+
+std::string count_text(std::uint64_t n) {
+    return std::to_string(n);
+}
+
+}  // namespace
+
+void add_occupancy_command(CLI::App& app) {
+    auto* cmd = app.add_subcommand(
+        "occupancy",
+        "Occupancy grid of a result: occupancy.ply, occupancy.json and an OctoMap environment.bt "
+        "with free space carved from the scan origins");
+    struct Args {
+        std::string dir;
+        std::string cloud;
+        std::string viewpoint;
+        bool no_octomap = false;
+        int threads = 0;
+        bool quiet = false;
+    };
+    auto args = std::make_shared<Args>();
+    cmd->add_option("result", args->dir,
+                    "Result folder of `surfgrow grow` (surfaces.json, labels.txt)")
+        ->required();
+    cmd->add_option("--cloud", args->cloud, "The cloud the result was grown from")->required();
+    cmd->add_option("--viewpoint", args->viewpoint,
+                    "Sensor position x,y,z with unit (e.g. 0,0,1.2m) to carve free space from; "
+                    "default: the result's or the cloud's viewpoint");
+    cmd->add_flag("--no-octomap", args->no_octomap, "Do not write environment.bt");
+    cmd->add_option("--threads", args->threads, "Worker threads for the index, 0 = all cores")
+        ->capture_default_str();
+    cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
+    cmd->callback([args] {
+        const std::filesystem::path dir = args->dir;
+        io::StoredResult stored = io::read_result_json(dir / "surfaces.json");
+        GrowerConfig config = stored.config;
+        io::read_workspace_parameters(dir / "surfaces.json", config);
+        const double metres = unit_to_metres(stored.meta.units, "surfaces.json units");
+        if (!args->viewpoint.empty())
+            config.viewpoint = parse_vec3_length_m(args->viewpoint, "--viewpoint") / metres;
+        config.threads = args->threads;
+        const std::vector<std::int32_t> labels = io::read_labels_txt(dir / "labels.txt");
+        const PointCloud cloud = io::read_cloud(args->cloud);
+        if (labels.size() != cloud.size())
+            throw Error(ErrorCode::kMalformedInput,
+                        cat({(dir / "labels.txt").string(), " has ", count_text(labels.size()),
+                             " labels but ", args->cloud, " has ", count_text(cloud.size()),
+                             " points: is this the cloud the result was grown from?"}));
+        if (cloud.offset != stored.meta.offset)
+            throw Error(
+                ErrorCode::kMalformedInput,
+                cat({args->cloud, " is not in the frame of ", (dir / "surfaces.json").string(),
+                     " (a different coordinate offset): is this the cloud the result was "
+                     "grown from?"}));
+        const std::vector<std::uint8_t> grown = grown_point_mask(cloud, config);
+        std::uint64_t n_grown = 0;
+        for (const std::uint8_t g : grown) n_grown += g;
+        if (n_grown != stored.stats.valid_points)
+            throw Error(ErrorCode::kMalformedInput,
+                        cat({args->cloud, " has ", count_text(n_grown), " points to grow but ",
+                             (dir / "surfaces.json").string(), " says ",
+                             count_text(stored.stats.valid_points),
+                             ": is this the cloud the result was grown from?"}));
+        for (std::size_t i = 0; i < labels.size(); ++i) {
+            if (labels[i] >= 0 && !grown[i])
+                throw Error(ErrorCode::kMalformedInput,
+                            cat({(dir / "labels.txt").string(), " line ", count_text(i + 1),
+                                 ": a surface id for a point that was not grown (NaN or outside "
+                                 "the workspace)"}));
+            if (labels[i] >= static_cast<std::int64_t>(stored.surfaces.size()))
+                throw Error(ErrorCode::kMalformedInput,
+                            cat({(dir / "labels.txt").string(), " line ", count_text(i + 1),
+                                 ": surface id ", std::to_string(labels[i]), " but there are ",
+                                 count_text(stored.surfaces.size()), " surfaces"}));
+        }
+
+        io::OccupancyOutputs which;
+        which.octomap = !args->no_octomap;
+        io::OutputTransaction tx(dir);
+        const io::OccupancySummary s =
+            io::add_occupancy_outputs(tx, cloud, labels, config, stored.meta, which);
+        tx.commit();
+        if (args->quiet) return;
+        std::string line = cat({count_text(s.occupied_cubes), " occupied cubes of ",
+                                format_length(config.mu * metres), " (",
+                                count_text(s.registered_points), " registered points)"});
+        if (s.octomap_written) {
+            if (s.octomap.carving == SensorOrigins::Source::kNone)
+                line += ", environment.bt without free space (no scan origin or viewpoint known)";
+            else
+                line += cat({", environment.bt with ", count_text(s.octomap.free),
+                             " free leaves from ", count_text(s.octomap.rays), " rays (",
+                             sensor_origins_name(s.octomap.carving), ")"});
+        }
+        std::cout << line << std::endl;
+    });
+}
+
+}  // namespace surfgrow::cli

@@ -1,0 +1,238 @@
+#include "surfgrow/io/octomap_export.hpp"
+
+#include <octomap/OcTree.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/text.hpp"
+
+namespace surfgrow::io {
+
+namespace {
+
+octomap::point3d to_point(const Vec3d& p) {
+    return {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())};
+}
+
+// The leaf key of `p`, or an error naming what lies out of OctoMap's range.
+octomap::OcTreeKey key_of(const octomap::OcTree& tree, const Vec3d& p, const char* what) {
+    octomap::OcTreeKey key;
+    if (!p.allFinite() || !tree.coordToKeyChecked(p.x(), p.y(), p.z(), key))
+        throw Error(ErrorCode::kCloudTooLarge,
+                    cat({"environment.bt: ", what, " (", num(p.x()), ", ", num(p.y()), ", ",
+                         num(p.z()), ") lies beyond OctoMap's range of 32768 cells of ",
+                         num(tree.getResolution()), " each way from the frame origin"}));
+    return key;
+}
+
+std::uint64_t leaves_at_full_depth(const octomap::OcTree& tree, bool occupied) {
+    std::uint64_t n = 0;
+    const unsigned max_depth = tree.getTreeDepth();
+    for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+        if (tree.isNodeOccupied(*it) != occupied) continue;
+        n += std::uint64_t{1} << (3 * (max_depth - it.getDepth()));
+    }
+    return n;
+}
+
+// A leaf key in one integer, 16 bits per axis, x lowest.
+std::uint64_t pack(const octomap::OcTreeKey& k) {
+    return std::uint64_t{k[0]} | (std::uint64_t{k[1]} << 16) | (std::uint64_t{k[2]} << 32);
+}
+
+octomap::OcTreeKey unpack(std::uint64_t v) {
+    return octomap::OcTreeKey(static_cast<octomap::key_type>(v & 0xffff),
+                              static_cast<octomap::key_type>((v >> 16) & 0xffff),
+                              static_cast<octomap::key_type>((v >> 32) & 0xffff));
+}
+
+// Morton (Z-order) code of a packed key: inserting leaves in this order walks the octree depth
+// first, so consecutive insertions share their path from the root (cache friendly).
+std::uint64_t spread(std::uint64_t v) {
+    v &= 0xffff;
+    v = (v | (v << 16)) & 0x0000ff0000ffull;
+    v = (v | (v << 8)) & 0x00f00f00f00full;
+    v = (v | (v << 4)) & 0x0c30c30c30c3ull;
+    v = (v | (v << 2)) & 0x249249249249ull;
+    return v;
+}
+
+std::uint64_t morton(std::uint64_t packed) {
+    return spread(packed) | (spread(packed >> 16) << 1) | (spread(packed >> 32) << 2);
+}
+
+void sort_morton(std::vector<std::uint64_t>& keys) {
+    std::sort(keys.begin(), keys.end(),
+              [](std::uint64_t a, std::uint64_t b) { return morton(a) < morton(b); });
+}
+
+// A set of leaf keys within a box of keys: a bitmap when the box has at most 2^29 leaves (64 MiB),
+// else a vector sorted on demand. Rays from a scanner cross the same leaves again and again, so
+// the bitmap turns millions of hash-set insertions into bit operations.
+class LeafSet {
+  public:
+    LeafSet(const std::array<std::uint64_t, 3>& lo, const std::array<std::uint64_t, 3>& hi)
+        : lo_(lo) {
+        std::uint64_t volume = 1;
+        for (int a = 0; a < 3; ++a) {
+            dims_[a] = hi[a] - lo[a] + 1;
+            volume *= dims_[a];  // at most 2^48: no overflow
+        }
+        dense_ = volume <= (std::uint64_t{1} << 29);
+        if (dense_) bits_.assign((volume + 63) / 64, 0);
+    }
+    void insert(std::uint64_t key) {
+        if (dense_) {
+            const std::uint64_t i = index(key);
+            bits_[i >> 6] |= std::uint64_t{1} << (i & 63);
+        } else {
+            keys_.push_back(key);
+            if (keys_.size() >= 2 * sorted_ + (std::size_t{1} << 20)) finish();
+        }
+    }
+    void finish() {
+        if (dense_) return;
+        std::sort(keys_.begin(), keys_.end());
+        keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());
+        sorted_ = keys_.size();
+    }
+    [[nodiscard]] bool contains(std::uint64_t key) const {
+        if (!dense_) return std::binary_search(keys_.begin(), keys_.end(), key);
+        const std::uint64_t i = index(key);
+        return (bits_[i >> 6] >> (i & 63)) & 1;
+    }
+    template <class F>
+    void for_each(F&& f) const {
+        if (!dense_) {
+            for (const std::uint64_t k : keys_) f(k);
+            return;
+        }
+        for (std::size_t w = 0; w < bits_.size(); ++w) {
+            for (std::uint64_t word = bits_[w]; word; word &= word - 1) {
+                std::uint64_t i = w * 64 + static_cast<std::uint64_t>(std::countr_zero(word));
+                const std::uint64_t x = i % dims_[0];
+                i /= dims_[0];
+                const std::uint64_t y = i % dims_[1], z = i / dims_[1];
+                f((lo_[0] + x) | ((lo_[1] + y) << 16) | ((lo_[2] + z) << 32));
+            }
+        }
+    }
+
+  private:
+    [[nodiscard]] std::uint64_t index(std::uint64_t key) const {
+        const std::uint64_t x = (key & 0xffff) - lo_[0], y = ((key >> 16) & 0xffff) - lo_[1],
+                            z = (key >> 32) - lo_[2];
+        return x + dims_[0] * (y + dims_[1] * z);
+    }
+    std::array<std::uint64_t, 3> lo_{}, dims_{};
+    bool dense_ = true;
+    std::vector<std::uint64_t> bits_;
+    std::vector<std::uint64_t> keys_;
+    std::size_t sorted_ = 0;
+};
+
+}  // namespace
+
+OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
+                                const PointCloud& cloud, std::span<const std::uint8_t> ray_mask,
+                                const SensorOrigins& origins) {
+    if (!(grid.mu() > 0))
+        throw Error(ErrorCode::kInvalidParameter,
+                    cat({"environment.bt: the resolution must be positive, got ", num(grid.mu())}));
+    if (!ray_mask.empty() && ray_mask.size() != cloud.size())
+        throw Error(ErrorCode::kInternal, "environment.bt: ray mask size differs from the cloud");
+    octomap::OcTree tree(grid.mu());
+    OctomapSummary summary;
+    summary.resolution = grid.mu();
+    summary.carving = origins.source;
+
+    std::vector<std::uint64_t> occupied;
+    occupied.reserve(grid.size());
+    for (const CellCoords& c : grid.cells())
+        occupied.push_back(pack(key_of(tree, grid.centre(c), "an occupied cube")));
+    std::sort(occupied.begin(), occupied.end());
+    if (std::adjacent_find(occupied.begin(), occupied.end()) != occupied.end())
+        throw Error(ErrorCode::kInternal, "environment.bt: two cubes share an OctoMap leaf");
+
+    std::vector<std::uint64_t> free;
+    if (origins.known()) {
+        // (origin, end leaf) of every ray: one per distinct end leaf, cast to the leaf's centre.
+        std::vector<std::pair<std::uint32_t, std::uint64_t>> rays;
+        for (std::size_t i = 0; i < cloud.size(); ++i) {
+            if (!is_finite(cloud.points[i]) || (!ray_mask.empty() && !ray_mask[i])) continue;
+            const Vec3d* o = origins.origin_of(cloud, i);
+            if (!o) continue;
+            rays.emplace_back(static_cast<std::uint32_t>(o - origins.origins.data()),
+                              pack(key_of(tree, cloud.points[i].cast<double>(), "a point")));
+        }
+        std::sort(rays.begin(), rays.end());
+        rays.erase(std::unique(rays.begin(), rays.end()), rays.end());
+        // Every leaf a ray crosses lies in the box of its two end leaves.
+        std::array<std::uint64_t, 3> lo{0xffff, 0xffff, 0xffff}, hi{0, 0, 0};
+        auto grow_box = [&](std::uint64_t key) {
+            for (int a = 0; a < 3; ++a) {
+                const std::uint64_t v = (key >> (16 * a)) & 0xffff;
+                lo[a] = std::min(lo[a], v);
+                hi[a] = std::max(hi[a], v);
+            }
+        };
+        std::vector<octomap::point3d> from(origins.origins.size());
+        for (std::size_t k = 0; k < origins.origins.size(); ++k)
+            from[k] = to_point(origins.origins[k]);
+        for (const auto& [o, end] : rays) {
+            grow_box(end);
+            grow_box(pack(key_of(tree, origins.origins[o], "a sensor origin")));
+        }
+        for (const std::uint64_t key : occupied) grow_box(key);
+        if (!rays.empty()) {
+            LeafSet blocked(lo, hi), carved(lo, hi);
+            for (const std::uint64_t key : occupied) blocked.insert(key);
+            for (const auto& r : rays) blocked.insert(r.second);
+            octomap::KeyRay ray;
+            for (const auto& [o, end] : rays) {
+                if (!tree.computeRayKeys(from[o], tree.keyToCoord(unpack(end)), ray)) continue;
+                ++summary.rays;
+                for (const octomap::OcTreeKey& key : ray) carved.insert(pack(key));
+            }
+            blocked.finish();
+            carved.finish();
+            carved.for_each([&](std::uint64_t key) {
+                if (!blocked.contains(key)) free.push_back(key);
+            });
+        }
+    }
+
+    // Values are set, not accumulated, so the tree does not depend on the order of insertion.
+    sort_morton(free);
+    sort_morton(occupied);
+    for (const std::uint64_t key : free)
+        tree.setNodeValue(unpack(key), tree.getClampingThresMinLog(), true);
+    for (const std::uint64_t key : occupied)
+        tree.setNodeValue(unpack(key), tree.getClampingThresMaxLog(), true);
+    tree.updateInnerOccupancy();
+    // OcTree::writeBinary() less its " done." on stderr, and with the resolution at full
+    // precision (the library prints 6 digits, so a resolution like 1/300 would read back off).
+    tree.toMaxLikelihood();
+    tree.prune();
+    const auto precision = out.precision(17);
+    out << "# Octomap OcTree binary file\n"
+        << "# (feel free to add / change comments, but leave the first line as it is!)\n#\n"
+        << "# written by surfgrow: occupied = registered points' cubes, free = carved by rays\n"
+        << "id " << tree.getTreeType() << "\nsize " << tree.size() << "\nres "
+        << tree.getResolution() << "\ndata\n";
+    out.precision(precision);
+    tree.writeBinaryData(out);
+    if (!out)
+        throw Error(ErrorCode::kCannotWrite, "environment.bt: the OctoMap could not be written");
+    summary.occupied = leaves_at_full_depth(tree, true);
+    summary.free = leaves_at_full_depth(tree, false);
+    return summary;
+}
+
+}  // namespace surfgrow::io
