@@ -1,0 +1,37 @@
+// A result folder written by `surfgrow grow`, read back for the picture commands (render, view).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "surfgrow/core/point_cloud.hpp"
+#include "surfgrow/io/results_io.hpp"
+
+namespace surfgrow::cli {
+
+struct ResultFolder {
+    std::filesystem::path dir;
+    /// surfaces.json; result.stats.orientation is filled in from summary.orientation.
+    io::StoredResult result;
+};
+
+/// Reads dir/surfaces.json. Throws Error(kCannotOpen) if `dir` is not a folder or has no
+/// surfaces.json, Error(kMalformedInput) if that file is not a surfgrow result.
+[[nodiscard]] ResultFolder read_result_folder(const std::filesystem::path& dir);
+
+/// The cloud a result was grown from, in the result's frame (positions relative to its offset),
+/// with the surface of each point from labels.txt (empty when the folder has none).
+struct GrownCloud {
+    PointCloud cloud;
+    std::vector<std::int32_t> labels;
+};
+
+/// Reads `cloud_file` and folder.dir/labels.txt. Throws what io::read_cloud throws, and
+/// Error(kMalformedInput) when the labels do not match the cloud (not the cloud that was grown)
+/// or name surfaces the result does not have.
+[[nodiscard]] GrownCloud read_grown_cloud(const std::filesystem::path& cloud_file,
+                                          const ResultFolder& folder);
+
+}  // namespace surfgrow::cli
