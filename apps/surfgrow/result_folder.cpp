@@ -13,19 +13,60 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// summary.orientation of surfaces.json, which io::read_result_json does not keep. The callback
-// drops the surfaces array while parsing, so this second pass builds no large document.
+// summary.orientation of surfaces.json, which io::read_result_json does not keep. A SAX pass that
+// stops at the surfaces array: surfgrow writes the summary before it, so this reads only the
+// head of the file (a 30 MB result costs microseconds, not a second parse).
+class OrientationReader : public nlohmann::json_sax<nlohmann::json> {
+  public:
+    explicit OrientationReader(bool whole_file) : whole_file_(whole_file) {}
+    std::string orientation;
+
+    bool key(string_t& k) override {
+        if (depth_ == 1) {
+            in_summary_ = k == "summary";
+            if (k == "surfaces" && !whole_file_) return false;  // stop: the summary came first
+        }
+        at_orientation_ = depth_ == 2 && in_summary_ && k == "orientation";
+        return true;
+    }
+    bool string(string_t& v) override {
+        if (at_orientation_) orientation = v;
+        return done();
+    }
+    bool start_object(std::size_t) override { return ++depth_, done(); }
+    bool end_object() override { return --depth_, done(); }
+    bool start_array(std::size_t) override { return ++depth_, done(); }
+    bool end_array() override { return --depth_, done(); }
+    bool null() override { return done(); }
+    bool boolean(bool) override { return done(); }
+    bool number_integer(number_integer_t) override { return done(); }
+    bool number_unsigned(number_unsigned_t) override { return done(); }
+    bool number_float(number_float_t, const string_t&) override { return done(); }
+    bool binary(binary_t&) override { return done(); }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false;
+    }
+
+  private:
+    bool done() {
+        at_orientation_ = false;
+        return true;
+    }
+    bool whole_file_;
+    int depth_ = 0;
+    bool in_summary_ = false;
+    bool at_orientation_ = false;
+};
+
 OrientationSource read_orientation(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    const nlohmann::json::parser_callback_t skip_surfaces = [](int depth,
-                                                               nlohmann::json::parse_event_t event,
-                                                               nlohmann::json& parsed) {
-        return !(depth == 1 && event == nlohmann::json::parse_event_t::key && parsed == "surfaces");
-    };
-    const nlohmann::json j = nlohmann::json::parse(in, skip_surfaces, /*allow_exceptions=*/false);
     std::string name;
-    if (j.is_object() && j.contains("summary") && j["summary"].is_object())
-        name = j["summary"].value("orientation", "");
+    for (const bool whole_file : {false, true}) {  // the whole file only if the summary came last
+        std::ifstream in(file, std::ios::binary);
+        OrientationReader reader(whole_file);
+        nlohmann::json::sax_parse(in, &reader);
+        name = reader.orientation;
+        if (!name.empty()) break;
+    }
     for (OrientationSource s : {OrientationSource::kScanOrigins, OrientationSource::kViewpoint,
                                 OrientationSource::kFrameOrigin, OrientationSource::kUp})
         if (name == io::orientation_name(s)) return s;

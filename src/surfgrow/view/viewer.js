@@ -38,7 +38,7 @@
   // Disks: one circle instanced per surface; the vertex shader places, orients and lights it
   // (two-sided Lambert from a light fixed to the camera, as in the PNG renderer). Disks seen from
   // behind (normals face the scanner) are shown, ghosted or hidden (uBack 0, 1, 2), as the PNG's
-  // BackFaces: one opaque pass for the solid disks, one see-through pass for the ghosts.
+  // BackFaces; the ghosts are drawn in passes of their own (surfacesLayer).
   const diskVertex = [
     'invariant gl_Position;',  // the same depth in every pass: the ghost pass tests for equality
     'attribute vec3 iCenter;', 'attribute vec3 iNormal;', 'attribute float iRadius;',
@@ -74,7 +74,7 @@
   function surfacesLayer() {
     const n = L.surfaces.count;
     const d = floatsOf(L.surfaces.disks);
-    const circle = new THREE.CircleBufferGeometry(1, 28);
+    const circle = new THREE.CircleBufferGeometry(1, 20);
     const g = new THREE.InstancedBufferGeometry();
     g.setIndex(circle.index);
     g.setAttribute('position', circle.getAttribute('position'));
@@ -113,7 +113,13 @@
       mesh.renderOrder = k;
       group.add(mesh);
     });
-    return { object: group, count: n, data: d, uniforms };
+    // The ghost passes cost as much as the solid one: skip them unless ghosting.
+    const setBack = (mode) => {
+      uniforms.uBack.value = mode;
+      group.children[1].visible = group.children[2].visible = mode === 1;
+    };
+    setBack(uniforms.uBack.value);
+    return { object: group, count: n, data: d, uniforms, setBack };
   }
 
   function normalsLayer(disks) {
@@ -387,7 +393,7 @@
       for (const [value, text] of [[0, 'show'], [1, 'ghost'], [2, 'hide']]) {
         const r = el('input', { type: 'radio', name: 'sg-back', id: 'sg-back-' + text });
         r.checked = u.uBack.value === value;
-        r.addEventListener('change', () => { u.uBack.value = value; redraw(); });
+        r.addEventListener('change', () => { layers.surfaces.setBack(value); redraw(); });
         const lab = el('label', { style: 'display:inline' });
         lab.appendChild(r);
         lab.appendChild(document.createTextNode(text + ' '));
@@ -434,14 +440,20 @@
         if (box && !box.disabled) box.click();
       }
     });
-  }
-  if (renderer) {
     draw();
     // Where a point of the result (file coordinates) lands in the window, in CSS pixels.
     api.project = (x, y, z) => {
       const o = meta.origin;
       const v = new THREE.Vector3(x - o[0], y - o[1], z - o[2]).project(camera);
       return [(v.x + 1) / 2 * window.innerWidth, (1 - v.y) / 2 * window.innerHeight];
+    };
+    // Draws now and waits for the GPU: milliseconds per frame, for measurements.
+    api.timeFrame = () => {
+      const gl = renderer.getContext(), pixel = new Uint8Array(4);
+      const t0 = performance.now();
+      draw();
+      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);  // waits for the frame
+      return performance.now() - t0;
     };
     api.layers = Object.keys(layers);
     api.visible = (name) => !!layers[name] && layers[name].object.visible;
