@@ -35,9 +35,10 @@ std::string grouped(std::uint64_t n) {
     return out;
 }
 
-// The cloud layer: at most max_points points, coloured by surface as in the PNG.
-void add_cloud(view::ViewerScene& s, const ResultFolder& folder, const std::string& file,
-               std::size_t max_points) {
+// The cloud layer: at most max_points points, coloured by surface as in the PNG, each with the
+// index of its disk (`scene` holds the disks).
+void add_cloud(view::ViewerScene& s, render::Scene& scene, const ResultFolder& folder,
+               const std::string& file, std::size_t max_points) {
     const GrownCloud g = read_grown_cloud(file, folder);
     const std::vector<std::uint32_t> keep = view::choose_points(g.cloud, max_points);
     PointCloud shown;
@@ -48,9 +49,8 @@ void add_cloud(view::ViewerScene& s, const ResultFolder& folder, const std::stri
         labels.reserve(keep.size());
         for (const std::uint32_t i : keep) labels.push_back(g.labels[i]);
     }
-    render::Scene points;
-    render::add_points(points, shown, labels, folder.result.surfaces.size());
-    s.points = std::move(points.points);
+    render::add_points(scene, shown, labels, folder.result.surfaces.size());
+    s.points = std::move(scene.points);
     std::uint64_t finite = 0;
     for (const Vec3f& p : g.cloud.points) finite += is_finite(p) ? 1 : 0;
     if (keep.size() < finite)
@@ -78,7 +78,7 @@ void run_view(const ViewArgs& a) {
     // Normals face the sensor unless no viewpoint was known: then there is no "back" to ghost.
     s.back_faces = r.stats.orientation == OrientationSource::kUp ? render::BackFaces::kShow
                                                                  : render::BackFaces::kGhost;
-    s.disks = render::scene_from_surfaces(r.surfaces).disks;
+    render::Scene scene = render::scene_from_surfaces(r.surfaces);
     if (layers.planes) {
         const std::vector<std::int32_t> group = plane_of_surface(*layers.planes, r.surfaces.size());
         for (const std::int32_t p : group) s.disk_plane_colors.push_back(render::id_color(p));
@@ -88,7 +88,8 @@ void run_view(const ViewArgs& a) {
     }
     if (layers.coverage) s.path = layers.coverage->goals;
     if (!a.cloud.empty() && a.max_points > 0)
-        add_cloud(s, folder, a.cloud, static_cast<std::size_t>(a.max_points));
+        add_cloud(s, scene, folder, a.cloud, static_cast<std::size_t>(a.max_points));
+    s.disks = std::move(scene.disks);
 
     std::uint64_t bytes = 0;
     io::write_atomically(a.out, [&](std::ostream& o) {

@@ -139,15 +139,24 @@ TEST_F(CliView, PageDataMatchesTheResultAndTheCloud) {
     const auto xyz = array_of<float>(page, layers["cloud"]["position"]);
     const auto rgb = array_of<std::uint8_t>(page, layers["cloud"]["color"]);
     ASSERT_EQ(xyz.size(), 3 * finite_points());
-    render::Scene points;
+    render::Scene points = scene;  // with the disks, so each point knows its disk
     const auto labels = io::read_labels_txt(box_->out / "labels.txt");
     render::add_points(points, box_->points, labels, box_->result.surfaces.size());
+    // With each point, its surface's normal (Int8, x127), so it can go with its disk.
+    const auto normals = array_of<std::int8_t>(page, layers["cloud"]["normal"]);
+    ASSERT_EQ(normals.size(), 3 * finite_points());
+    std::size_t registered = 0;
     for (std::size_t k = 0; k < points.points.size(); k += 97) {
+        const render::ScenePoint& p = points.points[k];
         for (int a = 0; a < 3; ++a)
-            EXPECT_NEAR(double(xyz[3 * k + a]) + origin[a], double(points.points[k].position[a]),
-                        1e-6);
-        EXPECT_EQ(rgb[3 * k + 1], points.points[k].color.g);
+            EXPECT_NEAR(double(xyz[3 * k + a]) + origin[a], double(p.position[a]), 1e-6);
+        EXPECT_EQ(rgb[3 * k + 1], p.color.g);
+        const Vec3d n =
+            p.disk >= 0 ? scene.disks[static_cast<std::size_t>(p.disk)].normal : Vec3d::Zero();
+        for (int a = 0; a < 3; ++a) EXPECT_NEAR(normals[3 * k + a] / 127.0, n[a], 0.005);
+        registered += p.disk >= 0;
     }
+    EXPECT_GT(registered, 200u);
 }
 
 TEST_F(CliView, LargeCloudsAreSubsampledTheSameWayEveryTime) {

@@ -131,6 +131,8 @@ TEST(ViewerHtml, MetaDescribesTheLayersAndTheFrame) {
     EXPECT_FLOAT_EQ(first[0], -0.5f);
     EXPECT_FLOAT_EQ(first[5], 1.0f);
     EXPECT_FLOAT_EQ(first[6], 0.1f);
+    // The one finite point lies on disk 0: its normal travels with it, x127.
+    EXPECT_EQ(decode_base64(script_block(page, "sg-cloud-normal")), std::string("\0\0\x7f", 3));
 }
 
 TEST(ViewerHtml, OptionalLayersWhenGiven) {

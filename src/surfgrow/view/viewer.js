@@ -33,6 +33,8 @@
   const meta = JSON.parse(document.getElementById('sg-meta').textContent);
   const L = meta.layers;
   const R = meta.radius;
+  // Disks seen from behind, and their points: 0 shown, 1 ghosted, 2 hidden (the panel switches).
+  const backFaces = { value: { show: 0, ghost: 1, hide: 2 }[meta.back_faces] || 0 };
 
   // ---- Layers ----
   // Disks: one circle instanced per surface; the vertex shader places, orients and lights it
@@ -90,7 +92,7 @@
     const uniforms = {
       uLight: { value: new THREE.Vector3(-0.45, 0.65, 0.6).normalize() },
       uByPlane: { value: 0 },
-      uBack: { value: meta.back_faces === 'ghost' ? 1 : meta.back_faces === 'hide' ? 2 : 0 },
+      uBack: backFaces,
     };
     // Passes: solid disks; ghosts' depth only; ghosts' colour where their depth is the nearest.
     // So exactly one ghost layer tints each pixel, however many ghosts overlap there (the PNG's
@@ -138,15 +140,20 @@
   }
 
   // Points: pushed back along the line of sight by the typical disk radius, so the points of a
-  // surface stay beneath its disk and only the rest (noise, gaps) show through, as in the PNG.
+  // surface stay beneath its disk and only the rest (noise, gaps) show through, as in the PNG;
+  // the points of a disk seen from behind are left out when it is ghosted or hidden, as there.
   const pointVertex = [
-    'attribute vec3 color;', 'uniform float uSize;', 'uniform float uBias;', 'varying vec3 vColor;',
+    'attribute vec3 color;', 'attribute vec3 aNormal;',
+    'uniform float uSize;', 'uniform float uBias;', 'uniform float uBack;', 'varying vec3 vColor;',
     'void main() {',
     '  vec4 mv = modelViewMatrix * vec4(position, 1.0);',
+    '  vec3 nv = normalMatrix * aNormal;',  // its surface's normal; zero for unregistered points
+    '  bool back = dot(nv, nv) > 0.25 && dot(nv, -mv.xyz) < 0.0;',
     '  mv.xyz *= 1.0 + uBias / max(length(mv.xyz), 1e-20);',
     '  vColor = color;',
     '  gl_PointSize = uSize;',
     '  gl_Position = projectionMatrix * mv;',
+    '  if (back && uBack > 0.5) gl_Position = vec4(0.0, 0.0, 2.0, 1.0);',  // go with their disk
     '}'].join('\n');
   const pointFragment = [
     'varying vec3 vColor;',
@@ -163,10 +170,13 @@
     const g = new THREE.BufferGeometry();
     g.setAttribute('position', new THREE.BufferAttribute(floatsOf(L.cloud.position), 3));
     g.setAttribute('color', new THREE.BufferAttribute(bytesOf(L.cloud.color), 3, true));
+    const nrm = bytesOf(L.cloud.normal);
+    g.setAttribute('aNormal', new THREE.BufferAttribute(new Int8Array(nrm.buffer), 3, true));
     const m = new THREE.ShaderMaterial({
       uniforms: {
         uSize: { value: (L.cloud.count > 300000 ? 1.5 : 2.5) * (window.devicePixelRatio || 1) },
         uBias: { value: L.surfaces ? L.surfaces.median_radius : 0 },
+        uBack: backFaces,
       },
       vertexShader: pointVertex,
       fragmentShader: pointFragment,
@@ -254,7 +264,9 @@
     const group = new THREE.Group();
     group.add(new THREE.Line(g, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors })));
     group.add(new THREE.Points(g, new THREE.ShaderMaterial({
-      uniforms: { uSize: { value: 7 * (window.devicePixelRatio || 1) }, uBias: { value: 0 } },
+      uniforms: {
+        uSize: { value: 7 * (window.devicePixelRatio || 1) }, uBias: { value: 0 }, uBack: { value: 0 },
+      },
       vertexShader: pointVertex,
       fragmentShader: roundFragment,
     })));

@@ -74,6 +74,9 @@ class Blocks {
         for (const render::Rgb& c : colors) rgb.insert(rgb.end(), {c.r, c.g, c.b});
         return add(id, rgb.data(), rgb.size());
     }
+    std::string add_bytes(const std::string& id, const std::vector<std::int8_t>& v) {
+        return add(id, v.data(), v.size());
+    }
     [[nodiscard]] const std::string& html() const { return html_; }
     [[nodiscard]] const Vec3d& center() const { return center_; }
 
@@ -147,16 +150,26 @@ std::pair<json, std::string> page_data(const ViewerScene& s) {
     if (!s.points.empty()) {
         std::vector<Vec3d> xyz;
         std::vector<render::Rgb> rgb;
+        // Each point's surface normal (zero: none), so points go with their disk when the page
+        // ghosts or hides the disks seen from behind.
+        std::vector<std::int8_t> normals;
         xyz.reserve(s.points.size());
         rgb.reserve(s.points.size());
+        normals.reserve(3 * s.points.size());
         for (const render::ScenePoint& p : s.points) {
             if (!is_finite(p.position)) continue;
             xyz.push_back(p.position.cast<double>());
             rgb.push_back(p.color);
+            const auto k = static_cast<std::size_t>(p.disk);
+            const bool known = p.disk >= 0 && k < s.disks.size() && usable(s.disks[k]);
+            const Vec3d n = known ? Vec3d(s.disks[k].normal.normalized()) : Vec3d::Zero();
+            for (int a = 0; a < 3; ++a)
+                normals.push_back(static_cast<std::int8_t>(std::lround(127.0 * n[a])));
         }
         layers["cloud"] = {{"count", xyz.size()},
                            {"position", blocks.add_positions("sg-cloud-xyz", xyz)},
-                           {"color", blocks.add_colors("sg-cloud-rgb", rgb)}};
+                           {"color", blocks.add_colors("sg-cloud-rgb", rgb)},
+                           {"normal", blocks.add_bytes("sg-cloud-normal", normals)}};
     }
     if (!disks.empty()) {
         // Per disk: centre (3), unit normal (3), radius: 7 floats.
