@@ -10,6 +10,9 @@ declare -A group=(
     [test]="libgtest-dev libgmock-dev libbenchmark-dev clang-format"
     [peers]="libpcl-dev libcgal-dev python3-open3d libgmp-dev libmpfr-dev"
 )
+# surfgrow view: three.js from Debian, embedded into the binary at build time; its browser test.
+group[build]+=" libjs-three"
+group[test]+=" chromium"
 
 wanted=()
 for g in "${@:-build}"; do

@@ -22,6 +22,8 @@ void add_all_commands(CLI::App& app) {
     add_coverage_command(app);
     add_occupancy_command(app);
     add_collide_command(app);
+    add_render_command(app);
+    add_view_command(app);
     add_scan_command(app);
     add_scan2cloud_command(app);
     add_eval_command(app);

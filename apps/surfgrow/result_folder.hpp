@@ -1,6 +1,8 @@
-// Reading back what `surfgrow grow` wrote, for the commands that work on an existing result.
+// A result folder written by `surfgrow grow`, read back by the commands that work on an existing
+// result (planes, coverage, render, view).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -10,19 +12,41 @@
 
 namespace surfgrow::cli {
 
-/// A result folder's surfaces with the cloud they were grown from and its labels.
+struct ResultFolder {
+    std::filesystem::path dir;
+    /// surfaces.json; result.stats.orientation is filled in from summary.orientation.
+    io::StoredResult result;
+};
+
+/// Reads dir/surfaces.json. Throws Error(kCannotOpen) if `dir` is not a folder or has no
+/// surfaces.json, Error(kMalformedInput) if that file is not a surfgrow result.
+[[nodiscard]] ResultFolder read_result_folder(const std::filesystem::path& dir);
+
+/// The cloud a result was grown from, in the result's frame (positions relative to its offset),
+/// with the surface of each point from labels.txt (empty when the folder has none).
+struct GrownCloud {
+    PointCloud cloud;
+    std::vector<std::int32_t> labels;
+};
+
+/// Reads `cloud_file` and folder.dir/labels.txt. Throws what io::read_cloud throws, and
+/// Error(kMalformedInput) when the labels do not match the cloud (not the cloud that was grown)
+/// or name surfaces the result does not have.
+[[nodiscard]] GrownCloud read_grown_cloud(const std::filesystem::path& cloud_file,
+                                          const ResultFolder& folder);
+
+/// A result folder's surfaces with the cloud they were grown from and its labels (all required).
 struct GrownFolder {
     io::StoredResult result;           ///< DIR/surfaces.json
     PointCloud cloud;                  ///< the cloud, in the result's frame (same offset)
     std::vector<std::int32_t> labels;  ///< DIR/labels.txt, one per cloud point
 };
 
-/// Reads DIR/surfaces.json. Throws Error(kCannotOpen) when DIR or the file is missing.
+/// read_result_folder(dir).result.
 [[nodiscard]] io::StoredResult read_grown_result(const std::filesystem::path& dir);
 
-/// Reads DIR/surfaces.json, DIR/labels.txt and `cloud_file`, and checks that they belong
-/// together: one label per point, every label a surface. Throws Error(kMalformedInput) naming
-/// the files when they do not.
+/// read_result_folder and read_grown_cloud, and DIR/labels.txt must exist: throws
+/// Error(kCannotOpen) when the result was grown with --no-labels.
 [[nodiscard]] GrownFolder read_grown_folder(const std::filesystem::path& dir,
                                             const std::filesystem::path& cloud_file);
 

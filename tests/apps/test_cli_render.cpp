@@ -1,0 +1,296 @@
+// End-to-end tests of `surfgrow render`: the real binary on a grown box, its pictures checked
+// pixel by pixel against where the renderer's camera puts the disks.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "cli_support.hpp"
+#include "support/test_support.hpp"
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/text.hpp"
+#include "surfgrow/render/png.hpp"
+#include "surfgrow/render/renderer.hpp"
+#include "surfgrow/render/scene_builder.hpp"
+
+namespace surfgrow {
+namespace {
+
+namespace fs = std::filesystem;
+using test::quoted;
+using test::run_surfgrow;
+
+constexpr render::Rgb kWhite{255, 255, 255};
+
+render::Image read_picture(const fs::path& file) {
+    return render::decode_png(test::read_bytes(file));
+}
+
+// Hue in [0, 1) and saturation of a colour.
+std::pair<double, double> hue_saturation(render::Rgb c) {
+    const double r = c.r / 255.0, g = c.g / 255.0, b = c.b / 255.0;
+    const double hi = std::max({r, g, b}), lo = std::min({r, g, b}), d = hi - lo;
+    if (d <= 0) return {0.0, 0.0};
+    double h = hi == r ? (g - b) / d : hi == g ? 2 + (b - r) / d : 4 + (r - g) / d;
+    h /= 6;
+    if (h < 0) h += 1;
+    return {h, d / hi};
+}
+
+double hue_distance(double a, double b) {
+    const double d = std::abs(a - b);
+    return std::min(d, 1 - d);
+}
+
+class CliRender : public ::testing::Test {
+  protected:
+    static void SetUpTestSuite() {
+        dir_ = new test::TempDir();
+        box_ = new test::GrownBox(test::grow_box(dir_->path()));
+    }
+    static void TearDownTestSuite() {
+        delete box_;
+        delete dir_;
+    }
+    // `surfgrow render OUT <args>`, expected to succeed.
+    static fs::path render(const std::string& name, const std::string& args) {
+        const fs::path png = dir_->path() / name;
+        const test::CliRun r =
+            run_surfgrow(cat({"render ", quoted(box_->out), " -o ", quoted(png), " ", args}));
+        EXPECT_EQ(r.code, 0) << r.out;
+        return png;
+    }
+    static render::Scene scene() {
+        render::Scene s = render::scene_from_surfaces(box_->result.surfaces);
+        s.legend = render::legend_line(box_->result.stats.points_in, box_->result.stats.surfaces,
+                                       box_->result.stats.registered_fraction());
+        return s;
+    }
+    static inline test::TempDir* dir_ = nullptr;
+    static inline test::GrownBox* box_ = nullptr;
+};
+
+TEST_F(CliRender, DefaultPictureIsTheOneGrowDrew) {
+    const fs::path png = render("default.png", "-q");
+    EXPECT_EQ(test::read_bytes(png), test::read_bytes(box_->out / "surfaces.png"));
+}
+
+// In every view: the requested size, and the pixel under the centre of every disk that faces
+// the viewer (drawn solid) is not background, where the renderer's own framing puts it.
+TEST_F(CliRender, EveryViewDrawsTheDisksWhereTheCameraProjectsThem) {
+    const render::Scene s = scene();
+    std::vector<std::string> pictures;
+    for (const char* view : {"front", "side", "top", "iso"}) {
+        SCOPED_TRACE(view);
+        const render::Image image =
+            read_picture(render(cat({view, ".png"}), cat({"--view ", view, " --size 480x360"})));
+        ASSERT_EQ(image.width(), 480);
+        ASSERT_EQ(image.height(), 360);
+        render::RenderOptions options;
+        options.width = 480;
+        options.height = 360;
+        options.view = render::parse_view(view);
+        const render::Camera camera = render::frame_scene(s, options);
+        std::size_t checked = 0;
+        for (const render::Disk& d : s.disks) {
+            // Not edge-on; seen from the front (solid) or from behind (ghosted, still drawn).
+            if (d.radius <= 0 || std::abs(d.normal.dot(camera.forward())) < 0.5) continue;
+            const Vec3d p = camera.project(d.center);
+            const int x = static_cast<int>(p.x()), y = static_cast<int>(p.y());
+            ASSERT_TRUE(image.contains(x, y)) << "disk centre off the picture at " << x << "," << y;
+            EXPECT_NE(image.at(x, y), kWhite) << "disk centre at " << x << "," << y;
+            ++checked;
+        }
+        EXPECT_GT(checked, 50u);
+        EXPECT_EQ(image.at(1, 1), kWhite);  // the margin stays background
+        // The legend line is written in the band along the bottom.
+        std::size_t ink = 0;
+        for (int y = image.height() * 9 / 10; y < image.height(); ++y)
+            for (int x = 0; x < image.width() / 2; ++x) ink += image.at(x, y).r < 120 ? 1 : 0;
+        EXPECT_GT(ink, 20u);
+        pictures.push_back(test::read_bytes(dir_->path() / cat({view, ".png"})));
+    }
+    for (std::size_t i = 0; i < pictures.size(); ++i)
+        for (std::size_t j = i + 1; j < pictures.size(); ++j) EXPECT_NE(pictures[i], pictures[j]);
+}
+
+TEST_F(CliRender, PicturesMatchTheLibraryWithTheSameOptions) {
+    // --normals --view side --size: the same bytes as render_scene with those options.
+    const fs::path png = render("side-normals.png", "--view side --normals --size 640x480 -q");
+    render::SurfaceStyle style;
+    style.normals = true;
+    render::Scene s = render::scene_from_surfaces(box_->result.surfaces, style);
+    s.legend = scene().legend;
+    render::RenderOptions options;
+    options.width = 640;
+    options.height = 480;
+    options.view = render::View::kSide;
+    options.units = "m";
+    EXPECT_EQ(test::read_bytes(png), render::encode_png(render::render_scene(s, options)));
+}
+
+TEST_F(CliRender, NormalsAreRedLines) {
+    auto red_pixels = [](const render::Image& image) {  // above the legend band (red x axis)
+        std::size_t n = 0;
+        for (int y = 0; y < image.height() * 9 / 10; ++y)
+            for (int x = 0; x < image.width(); ++x) {
+                const render::Rgb c = image.at(x, y);
+                n += c.r > 150 && c.r > 2 * c.g && c.r > 2 * c.b ? 1 : 0;
+            }
+        return n;
+    };
+    const render::Image plain = read_picture(render("plain.png", "--size 640x480"));
+    const render::Image normals = read_picture(render("normals.png", "--size 640x480 --normals"));
+    EXPECT_EQ(red_pixels(plain), 0u);
+    EXPECT_GT(red_pixels(normals), 200u);
+}
+
+TEST_F(CliRender, PointsComeFromTheCloudWithTheirSurfaceColours) {
+    const fs::path png = dir_->path() / "points.png";
+    const test::CliRun r =
+        run_surfgrow(cat({"render ", quoted(box_->out), " -o ", quoted(png), " --points --cloud ",
+                          quoted(box_->cloud), " --size 640x480"}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    std::size_t finite = 0;
+    for (const Vec3f& p : box_->points.points) finite += is_finite(p) ? 1 : 0;
+    EXPECT_NE(r.out.find(cat({std::to_string(finite), " points"})), std::string::npos) << r.out;
+    const render::Image without = read_picture(render("nopoints.png", "--size 640x480"));
+    const render::Image with = read_picture(png);
+    ASSERT_EQ(with.width(), without.width());
+    std::size_t changed = 0;
+    for (int y = 0; y < with.height(); ++y)
+        for (int x = 0; x < with.width(); ++x) changed += with.at(x, y) != without.at(x, y);
+    EXPECT_GT(changed, 500u);
+}
+
+TEST_F(CliRender, ColourByPlaneUsesTheBoundPlanesColours) {
+    test::TempDir tmp;
+    const fs::path out = tmp / "out";
+    fs::copy(box_->out, out);
+    // Two bound planes: the horizontal faces (id 3) and the vertical ones (id 8).
+    nlohmann::json planes = nlohmann::json::array();
+    for (const int id : {3, 8}) {
+        nlohmann::json surfaces = nlohmann::json::array();
+        for (std::size_t i = 0; i < box_->result.surfaces.size(); ++i)
+            if ((std::abs(box_->result.surfaces[i].normal.z()) > 0.7) == (id == 3))
+                surfaces.push_back(i);
+        planes.push_back({{"id", id},
+                          {"normal", {0, 0, 1}},
+                          {"boundary", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+                          {"surfaces", surfaces}});
+    }
+    test::write_bytes(out / "planes.json", nlohmann::json{{"planes", planes}}.dump());
+    auto share_of_plane_hues = [&](const std::string& colour_by) {
+        const fs::path png = tmp / cat({colour_by, ".png"});
+        const test::CliRun r = run_surfgrow(cat({"render ", quoted(out), " -o ", quoted(png),
+                                                 " --size 640x480 --color-by ", colour_by}));
+        EXPECT_EQ(r.code, 0) << r.out;
+        const render::Image image = read_picture(png);
+        const double h3 = hue_saturation(render::id_color(3)).first;
+        const double h8 = hue_saturation(render::id_color(8)).first;
+        std::size_t coloured = 0, of_planes = 0;
+        for (int y = 0; y < image.height() * 9 / 10; ++y)
+            for (int x = 0; x < image.width(); ++x) {
+                const auto [h, sat] = hue_saturation(image.at(x, y));
+                if (sat < 0.15) continue;
+                ++coloured;
+                of_planes += std::min(hue_distance(h, h3), hue_distance(h, h8)) < 0.04;
+            }
+        EXPECT_GT(coloured, 1000u);
+        return double(of_planes) / double(std::max<std::size_t>(coloured, 1));
+    };
+    const double by_plane = share_of_plane_hues("plane");
+    const double by_surface = share_of_plane_hues("surface");
+    std::printf("share of the planes' two hues: %.3f by plane, %.3f by surface\n", by_plane,
+                by_surface);
+    EXPECT_GT(by_plane, 0.8);
+    EXPECT_LT(by_surface, 0.4);
+}
+
+TEST_F(CliRender, NormalsFacingUpShowEveryDiskSolid) {
+    // A result whose normals merely face up (no viewpoint): back faces are drawn like the rest.
+    test::TempDir tmp;
+    const fs::path out = tmp / "out";
+    fs::copy(box_->out, out);
+    std::string json = test::read_bytes(out / "surfaces.json");
+    const std::string from = "\"orientation\": \"frame_origin\"";
+    ASSERT_NE(json.find(from), std::string::npos);
+    json.replace(json.find(from), from.size(), "\"orientation\": \"up\"");
+    test::write_bytes(out / "surfaces.json", json);
+    const test::CliRun r = run_surfgrow(
+        cat({"render ", quoted(out), " -o ", quoted(tmp / "up.png"), " --size 640x480"}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    render::RenderOptions options;
+    options.width = 640;
+    options.height = 480;
+    options.units = "m";
+    options.back_faces = render::BackFaces::kShow;
+    EXPECT_EQ(test::read_bytes(tmp / "up.png"),
+              render::encode_png(render::render_scene(scene(), options)));
+    options.back_faces = render::BackFaces::kGhost;
+    EXPECT_NE(test::read_bytes(tmp / "up.png"),
+              render::encode_png(render::render_scene(scene(), options)));
+}
+
+TEST_F(CliRender, SameBytesForAnyThreadCount) {
+    const fs::path one = render("t1.png", "--threads 1 --normals --size 800x600");
+    const fs::path three = render("t3.png", "--threads 3 --normals --size 800x600");
+    EXPECT_EQ(test::read_bytes(one), test::read_bytes(three));
+}
+
+// Every class of bad input: its own exit code, a message naming the problem, no picture.
+TEST_F(CliRender, BadInputsGiveTheirCodeAndWriteNoPicture) {
+    test::TempDir tmp;
+    fs::create_directories(tmp / "empty");
+    fs::create_directories(tmp / "notresult");
+    test::write_bytes(tmp / "notresult" / "surfaces.json", "{\"format\": \"something-else\"}");
+    test::write_bytes(tmp / "short.xyz", "0 0 0\n1 0 0\n0 1 0\n");
+    const std::string out = quoted(box_->out);
+    struct Case {
+        std::string name, args;
+        ErrorCode code;
+        std::string message;
+    };
+    const std::vector<Case> cases = {
+        {"missing folder", quoted(tmp / "nope"), ErrorCode::kCannotOpen, "no such folder"},
+        {"folder without a result", quoted(tmp / "empty"), ErrorCode::kCannotOpen,
+         "no surfaces.json"},
+        {"not a result", quoted(tmp / "notresult"), ErrorCode::kMalformedInput,
+         "not a surfgrow result"},
+        {"size without x", out + " --size 1600", ErrorCode::kUsage, "--size"},
+        {"size not numbers", out + " --size bigxsmall", ErrorCode::kUsage, "--size"},
+        {"size half given", out + " --size 1600x", ErrorCode::kUsage, "--size"},
+        {"size too small", out + " --size 8x8", ErrorCode::kInvalidParameter, "--size"},
+        {"size too large", out + " --size 100000x1200", ErrorCode::kInvalidParameter, "--size"},
+        {"unknown view", out + " --view diagonal", ErrorCode::kInvalidParameter, "diagonal"},
+        {"negative threads", out + " --threads -1", ErrorCode::kInvalidParameter, "--threads"},
+        {"unknown colouring", out + " --color-by colour", ErrorCode::kUsage, "--color-by"},
+        {"no planes.json", out + " --color-by plane", ErrorCode::kCannotOpen, "planes.json"},
+        {"points without cloud", out + " --points", ErrorCode::kUsage, "--cloud"},
+        {"missing cloud", out + " --cloud " + quoted(tmp / "nope.ply"), ErrorCode::kCannotOpen,
+         "nope.ply"},
+        {"not the grown cloud", out + " --cloud " + quoted(tmp / "short.xyz"),
+         ErrorCode::kMalformedInput, "is this the cloud that was grown"},
+        {"unknown option", out + " --frobnicate", ErrorCode::kUsage, ""},
+    };
+    for (const Case& c : cases) {
+        const fs::path png = tmp / cat({"out-", std::to_string(&c - cases.data()), ".png"});
+        const test::CliRun r = run_surfgrow(cat({"render ", c.args, " -o ", quoted(png)}));
+        EXPECT_EQ(r.code, static_cast<int>(c.code)) << c.name << ": " << r.out;
+        EXPECT_NE(r.out.find(c.message), std::string::npos) << c.name << ": " << r.out;
+        EXPECT_FALSE(fs::exists(png)) << c.name;
+    }
+    // No -o at all is a usage error; a failure leaves an older picture as it was.
+    EXPECT_EQ(run_surfgrow(cat({"render ", out})).code, static_cast<int>(ErrorCode::kUsage));
+    test::write_bytes(tmp / "old.png", "old");
+    EXPECT_NE(
+        run_surfgrow(cat({"render ", out, " -o ", quoted(tmp / "old.png"), " --size 8x8"})).code,
+        0);
+    EXPECT_EQ(test::read_bytes(tmp / "old.png"), "old");
+}
+
+}  // namespace
+}  // namespace surfgrow
