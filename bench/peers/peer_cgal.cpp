@@ -30,6 +30,7 @@
 #include <iostream>
 #include <memory>
 #include <numbers>
+#include <tuple>
 
 #include "peer_common.hpp"
 #include "segment_planes.hpp"
@@ -39,10 +40,12 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Vector = Kernel::Vector_3;
-using PN = std::pair<Point, Vector>;
+// Point, normal and input index: Efficient_RANSAC reorders its input range in place, so each
+// point carries its index in the file.
+using PN = std::tuple<Point, Vector, std::size_t>;
 using PNs = std::vector<PN>;
-using PointMap = CGAL::First_of_pair_property_map<PN>;
-using NormalMap = CGAL::Second_of_pair_property_map<PN>;
+using PointMap = CGAL::Nth_of_tuple_property_map<0, PN>;
+using NormalMap = CGAL::Nth_of_tuple_property_map<1, PN>;
 
 namespace SD = CGAL::Shape_detection;
 
@@ -89,7 +92,7 @@ Output region_growing(PNs& pns, const peers::Args& a) {
         for (const std::size_t i : regions[r]) o.labels[i] = static_cast<std::int32_t>(r);
     }
     o.planes = peers::fit_segment_planes(o.labels, regions.size(), [&](std::size_t i) {
-        const Point& p = pns[i].first;
+        const Point& p = std::get<0>(pns[i]);
         return Eigen::Vector3d(p.x(), p.y(), p.z());
     });
     o.stages["planes"] = peers::now_s() - t;
@@ -127,7 +130,8 @@ Output ransac(PNs& pns, const peers::Args& a) {
         const Kernel::Plane_3 pl = static_cast<Kernel::Plane_3>(*plane);
         const double len = std::sqrt(pl.a() * pl.a() + pl.b() * pl.b() + pl.c() * pl.c());
         o.planes.insert(o.planes.end(), {pl.a() / len, pl.b() / len, pl.c() / len, pl.d() / len});
-        for (const std::size_t i : shape->indices_of_assigned_points()) o.labels[i] = id;
+        for (const std::size_t i : shape->indices_of_assigned_points())
+            o.labels[std::get<2>(pns[i])] = id;
         ++id;
     }
     return o;
@@ -159,7 +163,8 @@ int main(int argc, char** argv) {
             throw std::runtime_error("cannot read " + rep.input);
         PNs input;
         input.reserve(points.size());
-        for (const Point& p : points) input.emplace_back(p, CGAL::NULL_VECTOR);
+        for (std::size_t i = 0; i < points.size(); ++i)
+            input.emplace_back(points[i], CGAL::NULL_VECTOR, i);
         points = {};
         rep.io_seconds = peers::now_s() - t0;
         rep.points = input.size();

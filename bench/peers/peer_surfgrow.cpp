@@ -1,7 +1,7 @@
 // surfgrow in the peers' harness: the library called as the README shows, timed like the peers.
 //
 //   peer_surfgrow CLOUD --out DIR [--mu 0.012] [--min-pts 10] [--threads 0] [--seed 1]
-//                 [--min-seconds 1] [--max-repeats 5]
+//                 [--mu-max 0] [--min-seconds 1] [--max-repeats 5]
 //
 // I/O = io::read_cloud. Algorithm = grow_surfaces (cube index, growing, leftover pass, normal
 // pooling, statistics), everything else at its default, as `surfgrow grow` runs it.
@@ -35,12 +35,14 @@ int main(int argc, char** argv) {
         cfg.min_pts = args.integer("min-pts", 10);
         cfg.threads = args.integer("threads", 0);
         cfg.seed = static_cast<std::uint64_t>(args.num("seed", 1));
+        cfg.mu_max = args.num("mu-max", 0.0);  // adaptive radius: off by default, as in the CLI
         rep.threads = cfg.threads;
         rep.params = {{"mu", cfg.mu},
                       {"min_pts", cfg.min_pts},
                       {"alpha", cfg.alpha},
                       {"plane_tolerance", cfg.tolerance()},
                       {"pool_angle_deg", cfg.pool_angle_deg},
+                      {"mu_max", cfg.mu_max},
                       {"seed", static_cast<double>(cfg.seed)}};
 
         surfgrow::GrowResult result;

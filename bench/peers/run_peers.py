@@ -25,8 +25,13 @@ ROOT = HERE.parent.parent
 REAL_DIR = ROOT.parent / "shared" / "data" / "real"
 
 MIN_PTS = 10          # the paper's min_pts, for every tool
-ANGLE_DEG = 15.0      # region growers' angle threshold = surfgrow's pooling angle
-CURVATURE = 1.0 / 9.0  # PCL: lambda0 / sum(lambda) below which a point may seed = surfgrow's alpha 4
+# Angle thresholds: each peer's best on a sweep over the single scan (bench/peers/README.md).
+# PCL compares a neighbour's normal with the current point's, so its regions drift round edges
+# at 8 degrees and more; CGAL compares with the region's fitted plane and does best at 25.
+PCL_RG_ANGLE = 5.0
+PCL_RG_CURVATURE = 1.0  # PCL's tutorial value; 1/9 (= surfgrow's alpha 4) registered less
+CGAL_RG_ANGLE = 25.0  # CGAL's default
+CGAL_RANSAC_ANGLE = 25.0  # normal_threshold = cos(25 deg) ~ 0.9, CGAL's default
 MAX_PLANES = 200      # iterative RANSAC: at most this many planes
 ITERATIONS = 1000     # RANSAC hypotheses per plane (PCL, Open3D)
 RECOVER_SHARE = 0.5   # GT plane recovered: a segment with >= 50 % of its points on it ...
@@ -46,6 +51,9 @@ REAL_SCANS = [
 
 TOOLS = [
     ("surfgrow", "grow"),
+    # The README's answer to sparse far ranges: the radius doubles up to 4 mu where a home point
+    # has too few neighbours (k-nearest peers adapt their neighbourhood to density implicitly).
+    ("surfgrow", "grow-adaptive"),
     ("pcl", "region-growing"),
     ("pcl", "ransac"),
     ("cgal", "region-growing"),
@@ -184,9 +192,10 @@ def make_clouds(a, build, work):
     add("I-beam channel, single scan", single)
     if not a.quick:
         add("I-beam channel, 4 fused scans", sim("channel-4scans", 4))
-        big = sim("channel-36scans", 36, length=22.0, crops=[100_000, 300_000, 1_000_000,
+        # 43 poses 0.5 m apart along a 26 m channel: about 10 M points at the 4-scan density.
+        big = sim("channel-43scans", 43, length=26.0, crops=[100_000, 300_000, 1_000_000,
                                                              3_000_000])
-        add("I-beam channel (22 m), 36 fused scans", big)
+        add("I-beam channel (26 m), 43 fused scans", big)
     real = REAL_SCANS[:1] if a.quick else REAL_SCANS
     for rel in real:
         src = REAL_DIR / rel
@@ -206,8 +215,10 @@ def tool_params(cloud):
     mu = m["mu"]
     nb = m.get("neighbours_within_mu", {}).get("median", 20)
     return {"mu": mu, "tol": mu, "k": max(MIN_PTS, int(round(nb))), "min_pts": MIN_PTS,
-            "min_plane": max(MIN_PTS, n // 1000), "angle": ANGLE_DEG, "curvature": CURVATURE,
-            "max_planes": MAX_PLANES, "iterations": ITERATIONS}
+            "min_plane": max(MIN_PTS, n // 1000), "pcl_angle": PCL_RG_ANGLE,
+            "curvature": PCL_RG_CURVATURE, "cgal_angle": CGAL_RG_ANGLE,
+            "cgal_ransac_angle": CGAL_RANSAC_ANGLE, "max_planes": MAX_PLANES,
+            "iterations": ITERATIONS}
 
 
 def tool_command(build, tool, method, cloud_path, out, p, threads, a):
@@ -215,17 +226,20 @@ def tool_command(build, tool, method, cloud_path, out, p, threads, a):
     if tool == "surfgrow":
         return [str(build / "bench/peers/peer_surfgrow"), cloud_path, "--out", out, "--mu",
                 str(p["mu"]), "--min-pts", str(p["min_pts"]), "--threads", str(threads),
-                "--seed", "1"] + rep
+                "--seed", "1"] + (["--mu-max", str(4 * p["mu"])] if method == "grow-adaptive"
+                                  else []) + rep
     common = ["--out", out, "--k", str(p["k"]), "--tol", str(p["tol"]), "--min-pts",
               str(p["min_pts"]), "--min-plane", str(p["min_plane"])]
     if tool == "pcl":
         return [str(build / "bench/peers/peer_pcl"), cloud_path, "--method", method] + common + [
-            "--angle", str(p["angle"]), "--curvature", f"{p['curvature']:.6f}",
+            "--angle", str(p["pcl_angle"]), "--curvature", f"{p['curvature']:.6f}",
             "--max-planes", str(p["max_planes"]), "--iterations", str(p["iterations"]),
             "--threads", str(threads)] + rep
     if tool == "cgal":
         return [str(build / "bench/peers/peer_cgal"), cloud_path, "--method", method] + common + [
-            "--mu", str(p["mu"]), "--angle", str(p["angle"]), "--threads", str(threads)] + rep
+            "--mu", str(p["mu"]), "--angle",
+            str(p["cgal_ransac_angle"] if method == "ransac" else p["cgal_angle"]),
+            "--threads", str(threads)] + rep
     if tool == "open3d":
         return ["/usr/bin/python3", str(HERE / "peer_open3d.py"), cloud_path] + common + [
             "--mu", str(p["mu"]), "--max-planes", str(p["max_planes"]), "--iterations",
@@ -440,10 +454,10 @@ def label_of(tool, method):
         " " + method
 
 
-def headline(results, cloud_file):
+def headline(results, cloud_file, method="grow"):
     """surfgrow vs the peers on one cloud: speed ratio, registered %, normal error."""
     runs = [r for r in results["runs"].values() if r["cloud_file"] == cloud_file]
-    sg = [r for r in runs if r["tool"] == "surfgrow" and "metrics" in r]
+    sg = [r for r in runs if r["tool"] == "surfgrow" and r["method"] == method and "metrics" in r]
     peers = [r for r in runs if r["tool"] != "surfgrow" and "metrics" in r]
     if not sg or not peers:
         return None
@@ -463,6 +477,10 @@ def headline(results, cloud_file):
         "sg_reg": sg["metrics"]["registered_pct"], "best_reg": best_reg,
         "sg_err": sg["metrics"].get("normal_err_median_deg"), "best_err": best_err,
     }
+
+
+HEADLINE_CLOUDS = [("channel-1scan", "single scan"), ("channel-4scans", "4 fused scans")]
+SG_METHODS = ["grow", "grow-adaptive"]
 
 
 def write_report(a, results, path):
@@ -493,10 +511,11 @@ def write_report(a, results, path):
     # Headline.
     L.append("## Headline")
     L.append("")
-    for cf, title in [("channel-1scan", "single scan"), ("channel-4scans", "4 fused scans")]:
-        h = headline(results, cf)
+    for (cf, title), method in [(c, m) for c in HEADLINE_CLOUDS for m in SG_METHODS]:
+        h = headline(results, cf, method)
         if not h:
             continue
+        title = f"{title}, surfgrow {method}"
         err = (f"median normal error {fmt(h['sg_err'], 2)}° vs the best peer's "
                f"{fmt(h['best_err']['metrics']['normal_err_median_deg'], 2)}° "
                f"({label_of(h['best_err']['tool'], h['best_err']['method'])})"
@@ -514,10 +533,11 @@ def write_report(a, results, path):
     L.append("")
     L.append("| target | measured | met |")
     L.append("|---|---|---|")
-    for cf, title in [("channel-1scan", "single scan"), ("channel-4scans", "4 fused scans")]:
-        h = headline(results, cf)
+    for (cf, title), method in [(c, m) for c in HEADLINE_CLOUDS for m in SG_METHODS]:
+        h = headline(results, cf, method)
         if not h:
             continue
+        title = f"{title}, {method}"
         L.append(f"| ≥ 100× faster than the fastest peer, {title} | {h['ratio']:.0f}× | "
                  f"{'yes' if h['ratio'] >= 100 else 'no'} |")
         L.append(f"| registered % above every peer's, {title} | {fmt(h['sg_reg'])} % vs "
