@@ -66,8 +66,8 @@ inline double now_s() {
         .count();
 }
 
-/// Peak resident set of this process so far, bytes (getrusage).
-inline double peak_rss_bytes() {
+/// getrusage's ru_maxrss, bytes: includes the pre-exec memory of the process that spawned us.
+inline double ru_maxrss_bytes() {
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
     return static_cast<double>(u.ru_maxrss) * 1024.0;
@@ -84,14 +84,27 @@ inline double proc_status_bytes(const char* field) {
     return 0.0;
 }
 
+/// The high-water mark before the last reset_peak_rss(), bytes.
+inline double& hwm_before_reset() {
+    static double v = 0.0;
+    return v;
+}
+
 /// Resets the peak-RSS high-water mark (VmHWM) to the current RSS, so the peak of the algorithm
 /// alone can be read afterwards; false where the kernel refuses.
 inline bool reset_peak_rss() {
+    hwm_before_reset() = proc_status_bytes("VmHWM");
     std::ofstream f("/proc/self/clear_refs");
     if (!f) return false;
     f << "5";
     f.flush();
     return static_cast<bool>(f);
+}
+
+/// Peak resident set of this process, bytes: VmHWM, not getrusage's ru_maxrss, which also
+/// counts the parent's memory from before exec (a Python driver's arrays would show up in it).
+inline double process_peak_rss_bytes() {
+    return std::max(hwm_before_reset(), proc_status_bytes("VmHWM"));
 }
 
 /// CPU seconds (user + system, all threads) this process has used so far.
@@ -190,7 +203,8 @@ inline void write_report(const std::string& path, const Report& r) {
         f << (first ? "" : ", ") << "\"" << json_escape(k) << "\": " << num(v);
         first = false;
     }
-    f << "},\n  \"peak_rss_bytes\": " << num(peak_rss_bytes())
+    f << "},\n  \"process_peak_rss_bytes\": " << num(process_peak_rss_bytes())
+      << ",\n  \"ru_maxrss_bytes\": " << num(ru_maxrss_bytes())
       << ",\n  \"baseline_rss_bytes\": " << num(r.baseline_rss)
       << ",\n  \"input_rss_bytes\": " << num(r.input_rss) << ",\n  \"algorithm_peak_rss_bytes\": "
       << (r.algorithm_peak_valid ? num(r.algorithm_peak_rss) : std::string("null"))

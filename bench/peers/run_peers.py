@@ -449,6 +449,14 @@ def fmt_s(v):
     return f"{v:.4f}" if v < 0.1 else (f"{v:.3f}" if v < 10 else f"{v:.1f}")
 
 
+def peak_of(run):
+    """A run's peak resident memory, bytes. The tools' own VmHWM: wait4's ru_maxrss would also
+    count this driver's memory from before the exec (Linux keeps the old mm's high-water mark).
+    Runs from before the tools reported it give the algorithm phase's (input included)."""
+    rep = run.get("report", {})
+    return rep.get("process_peak_rss_bytes") or rep.get("algorithm_peak_rss_bytes") or 0.0
+
+
 def label_of(tool, method):
     return {"surfgrow": "**surfgrow**", "pcl": "PCL", "cgal": "CGAL", "open3d": "Open3D"}[tool] + \
         " " + method
@@ -494,7 +502,7 @@ def write_report(a, results, path):
     L.append("")
     L.append("## Machine and command")
     L.append("")
-    L.append(f"- **Command:** `{results['command']}` ({results['started']} – {results['finished']})")
+    L.append(f"- **Command:** `{results['command']}` ({results.get('started', '?')} – {results.get('finished', 'unfinished')})")
     L.append(f"- **CPU:** {mi['cpu']}, {mi['cores']} cores; **memory:** {mi['memory_gib']} GiB; "
              f"**OS:** {mi['os']}, kernel {mi['kernel']}")
     L.append("- **Packages:** " + ", ".join(f"{k} {v}" for k, v in mi["packages"].items()))
@@ -582,7 +590,9 @@ def write_report(a, results, path):
     L.append("Algorithm seconds: the median of the runs a tool made (it repeats while under "
              f"{a.min_seconds} s, at most {a.max_repeats} times); I/O: reading the file with the "
              "tool's own reader. CPU s: user + system seconds of the algorithm, all threads "
-             "(a loaded machine stretches wall time, much less CPU time). Peak RSS: the whole process (`wait4`). Segments: segments with at "
+             "(a loaded machine stretches wall time, much less CPU time). Peak RSS: the "
+             "process's resident high-water mark, VmHWM (where a run predates that report: the "
+             "algorithm phase's, which holds the loaded input). Segments: segments with at "
              "least one point. Residual: mean |distance| of registered points to their segment's "
              "plane. Normal error: per registered point on a true face, the angle between its "
              "segment's normal and the true normal (as lines). GT planes: planar faces holding "
@@ -635,7 +645,7 @@ def write_report(a, results, path):
             rep, m = r["report"], r["metrics"]
             cells = [name, fmt_s(rep["algorithm_seconds_median"]),
                      fmt_s(rep.get("algorithm_cpu_seconds_median")), fmt_s(rep["io_seconds"]),
-                     fmt(r["peak_rss_bytes"] / 2**20, 0), f"{m['segments']:,}",
+                     fmt(peak_of(r) / 2**20, 0), f"{m['segments']:,}",
                      fmt(m["registered_pct"])]
             if truth:
                 cells += [fmt(m.get("normal_err_median_deg"), 2),
@@ -698,6 +708,34 @@ def write_report(a, results, path):
     Path(path).write_text("\n".join(L) + "\n")
 
 
+def update_readme(results, readme):
+    """Rewrites the headline between the peers markers in README.md (full runs only)."""
+    begin, end = "<!-- peers-headline -->", "<!-- /peers-headline -->"
+    text = readme.read_text()
+    if begin not in text or end not in text:
+        return
+    lines = []
+    for (cf, title), method in [(c, m) for c in HEADLINE_CLOUDS for m in SG_METHODS]:
+        h = headline(results, cf, method)
+        if not h:
+            continue
+        be = h["best_err"]["metrics"]["normal_err_median_deg"] if h["best_err"] else None
+        lines.append(f"| {title} | {method} | {fmt_s(h['surfgrow_s'])} s | "
+                     f"{label_of(h['fastest']['tool'], h['fastest']['method'])} "
+                     f"{fmt_s(h['fastest_s'])} s | **{h['ratio']:.0f}×** ({h['cpu_ratio']:.0f}× CPU) | "
+                     f"{fmt(h['sg_reg'])} % vs {fmt(h['best_reg']['metrics']['registered_pct'])} % | "
+                     f"{fmt(h['sg_err'], 2)}° vs {fmt(be, 2)}° |")
+    la = results.get("load", {})
+    body = ["", f"Measured by `{results['command']}` on {results['machine']['cpu']} "
+            f"({results['machine']['cores']} cores), load average {fmt(la.get('start'), 1)}–"
+            f"{fmt(la.get('end'), 1)}; details and every table in [BENCHMARK.md](BENCHMARK.md).", "",
+            "| cloud | surfgrow | its time | fastest peer | speed-up | registered (best peer) | "
+            "median normal error (best peer) |", "|---|---|---|---|---|---|---|"] + lines + [""]
+    head, rest = text.split(begin, 1)
+    tail = rest.split(end, 1)[1]
+    readme.write_text(head + begin + "\n".join(body) + end + tail)
+
+
 def scaling_rows(results):
     rows = []
     for name, r in results.get("scaling", {}).items():
@@ -746,7 +784,8 @@ def main():
     results = json.loads(rfile.read_text()) if rfile.exists() and not a.rerun else {}
     results.setdefault("runs", {})
     results["machine"] = machine()
-    results["command"] = a.command or shlex.join(["bench/peers/run_peers.sh"] + sys.argv[1:])
+    if not a.report_only or "command" not in results:
+        results["command"] = a.command or shlex.join(["bench/peers/run_peers.sh"] + sys.argv[1:])
     mem_limit = a.mem_limit_gb * 1e9
     if not a.report_only:
         results["started"] = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
@@ -768,6 +807,8 @@ def main():
         results["finished"] = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
         save(results, work)
     write_report(a, results, report)
+    if not a.quick and not a.report:
+        update_readme(results, ROOT / "README.md")
     log(f"report: {report}")
 
 
