@@ -564,6 +564,12 @@ def write_report(a, results, path):
             L.append(f"| time per point within ±30 % from {sc[0]['n']:,} to {sc[-1]['n']:,} points "
                      f"| {min(per):.0f}–{max(per):.0f} ns/point (±{spread:.0f} % of the mean) | "
                      f"{'yes' if spread <= 30 else 'no'} |")
+            cper = [r["cpu_ns_per_point"] for r in sc if r.get("cpu_ns_per_point")]
+            if cper:
+                cm = sum(cper) / len(cper)
+                cs = max(abs(p / cm - 1) for p in cper) * 100
+                L.append(f"| the same in CPU time (less sensitive to load) | {min(cper):.0f}–"
+                         f"{max(cper):.0f} CPU ns/point (±{cs:.0f} %) | {'yes' if cs <= 30 else 'no'} |")
         bpp = [r["bytes_beyond_outputs"] for r in sc if r.get("bytes_beyond_outputs") is not None]
         if bpp:
             L.append(f"| peak memory < 64 B/point plus the outputs | {max(bpp):.0f} B/point at most "
@@ -602,7 +608,7 @@ def write_report(a, results, path):
              "its largest segment (1 for a plane found whole; patch-based surfgrow is low here "
              "by design).")
     L.append("")
-    seen = []
+    seen = list(results.get("clouds", {}))
     for r in results["runs"].values():
         if r["cloud_file"] not in seen:
             seen.append(r["cloud_file"])
@@ -612,6 +618,16 @@ def write_report(a, results, path):
                               cinfo.get(cf, {}).get("kind") != "real" else 0))
     for cf in seen:
         runs = [r for r in results["runs"].values() if r["cloud_file"] == cf]
+        if not runs:
+            L.append(f"### {cinfo.get(cf, {}).get('name', cf)}")
+            L.append("")
+            L.append(f"{cinfo.get(cf, {}).get('points', 0):,} points. Not run: the run that wrote "
+                     "this report ended before this cloud's turn.")
+            L.append("")
+            continue
+        done = {(r["tool"], r["method"]) for r in runs}
+        runs += [{"tool": t, "method": m, "status": "not run (the run ended first)",
+                  "load1": float("nan")} for t, m in TOOLS if (t, m) not in done]
         c0 = runs[0]
         truth = any("normal_err_median_deg" in r.get("metrics", {}) for r in runs)
         meta = results["clouds"].get(cf, {})
@@ -640,7 +656,7 @@ def write_report(a, results, path):
                     what += (f" (> {r['timeout_s']} s)" if what == "timeout"
                              else f" (> {a.mem_limit_gb} GB)")
                 ncol = 14 if truth else 10
-                L.append(f"| {name} | {what} |" + " – |" * (ncol - 3) + f" {r['load1']:.1f} |")
+                L.append(f"| {name} | {what} |" + " – |" * (ncol - 3) + f" {fmt(r['load1'], 1)} |")
                 continue
             rep, m = r["report"], r["metrics"]
             cells = [name, fmt_s(rep["algorithm_seconds_median"]),
@@ -669,17 +685,23 @@ def write_report(a, results, path):
                  "counts the input cloud (12 B/point), the index, the working memory and the "
                  "outputs; 'beyond outputs' subtracts the labels and surfaces returned.")
         L.append("")
-        L.append("| points | algorithm s | ns / point | vs mean | peak B / point | "
-                 "beyond outputs B / point | surfaces | load |")
-        L.append("|---|---|---|---|---|---|---|---|")
+        L.append("| points | algorithm s | ns / point | vs mean | CPU ns / point | vs mean | "
+                 "peak B / point | beyond outputs B / point | surfaces | load |")
+        L.append("|---|---|---|---|---|---|---|---|---|---|")
+        cper = [r["cpu_ns_per_point"] for r in sc if r.get("cpu_ns_per_point")]
+        cmean = sum(cper) / len(cper) if cper else 1
         per = [r["ns_per_point"] for r in sc if r.get("ns_per_point")]
         mean = sum(per) / len(per) if per else 1
         for r in sc:
             if r.get("status") != "ok":
-                L.append(f"| {r['n']:,} | {r['status']} | – | – | – | – | – | {fmt(r['load1'], 1)} |")
+                L.append(f"| {r['n']:,} | {r['status']} | – | – | – | – | – | – | – | "
+                         f"{fmt(r['load1'], 1)} |")
                 continue
+            c = r.get("cpu_ns_per_point")
             L.append(f"| {r['n']:,} | {fmt_s(r['seconds'])} | {r['ns_per_point']:.1f} | "
-                     f"{100 * (r['ns_per_point'] / mean - 1):+.0f} % | {fmt(r['bytes_per_point'], 1)} | "
+                     f"{100 * (r['ns_per_point'] / mean - 1):+.0f} % | {fmt(c, 1)} | "
+                     + (f"{100 * (c / cmean - 1):+.0f} %" if c else "–") + " | "
+                     f"{fmt(r['bytes_per_point'], 1)} | "
                      f"{fmt(r['bytes_beyond_outputs'], 1)} | {r['surfaces']:,} | {fmt(r['load1'], 1)} |")
         L.append("")
     if results.get("threads"):
@@ -746,6 +768,8 @@ def scaling_rows(results):
             s = rep["algorithm_seconds_median"]
             row["seconds"] = s
             row["ns_per_point"] = 1e9 * s / n
+            cpu = rep.get("algorithm_cpu_seconds_median")
+            row["cpu_ns_per_point"] = 1e9 * cpu / n if cpu else None
             row["surfaces"] = rep["segments"]
             if rep.get("algorithm_peak_rss_bytes"):
                 used = rep["algorithm_peak_rss_bytes"] - rep["baseline_rss_bytes"]
@@ -793,7 +817,7 @@ def main():
         log("clouds:")
         clouds = make_clouds(a, build, work)
         results["clouds"] = {Path(c["path"]).stem: c["meta"] | {"faces": len(c["meta"].get(
-            "faces", []))} for c in clouds}
+            "faces", [])), "name": c["name"]} for c in clouds}
         # The 10 M-point cloud's peers last: they are the slowest runs and may hit the limits.
         small = [c for c in clouds if c["meta"]["points"] < 5_000_000]
         large = [c for c in clouds if c["meta"]["points"] >= 5_000_000]
