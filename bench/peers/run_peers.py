@@ -511,14 +511,23 @@ def write_report(a, results, path):
              f"{fmt(la.get('end'), 2)}; each run's is in its table. Other jobs shared this "
              f"{mi['cores']}-core machine when the load exceeds {mi['cores']}: absolute times are "
              "then noisy, ratios within a table less so.")
-    L.append(f"- **Limits per run:** {a.timeout} s for a peer, {a.timeout_surfgrow} s for surfgrow; "
-             f"{a.mem_limit_gb} GB resident memory. Threads: {mi['cores']} for every tool that can "
-             "use them (see the protocol).")
+    lim = results.get("limits") or {
+        "peer_s": max([r["timeout_s"] for r in results["runs"].values() if r["tool"] != "surfgrow"]
+                      or [a.timeout]), "surfgrow_s": a.timeout_surfgrow, "mem_gb": a.mem_limit_gb}
+    L.append(f"- **Limits per run:** {lim['peer_s']:g} s for a peer, {lim['surfgrow_s']:g} s for "
+             f"surfgrow; {lim['mem_gb']:g} GB resident memory. Threads: {mi['cores']} for every "
+             "tool that can use them (see the protocol).")
     L.append("")
 
     # Headline.
     L.append("## Headline")
     L.append("")
+    if max(la.get("start") or 0, la.get("end") or 0) > mi["cores"]:
+        L.append(f"**This run shared the machine with other jobs (load average above its "
+                 f"{mi['cores']} cores):** wall times are stretched, several-fold for short "
+                 "multi-threaded runs; CPU seconds are given beside them. Regenerate on a quiet "
+                 "machine for the figures that count.")
+        L.append("")
     for (cf, title), method in [(c, m) for c in HEADLINE_CLOUDS for m in SG_METHODS]:
         h = headline(results, cf, method)
         if not h:
@@ -605,8 +614,8 @@ def write_report(a, results, path):
              "≥ 0.1 % of the points; recovered: some segment has ≥ 50 % of its points on it and a "
              "normal within 30°. Purity: registered points on their segment's majority face. "
              "Largest segment: the median over GT planes of the share of the plane's points in "
-             "its largest segment (1 for a plane found whole; patch-based surfgrow is low here "
-             "by design).")
+             "its largest segment (100 % for a plane found whole; patch-based surfgrow is low "
+             "here by design).")
     L.append("")
     seen = list(results.get("clouds", {}))
     for r in results["runs"].values():
@@ -814,6 +823,8 @@ def main():
     if not a.report_only:
         results["started"] = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
         results["load"] = {"start": os.getloadavg()[0]}
+        results["limits"] = {"peer_s": a.timeout, "surfgrow_s": a.timeout_surfgrow,
+                             "mem_gb": a.mem_limit_gb}
         log("clouds:")
         clouds = make_clouds(a, build, work)
         results["clouds"] = {Path(c["path"]).stem: c["meta"] | {"faces": len(c["meta"].get(
