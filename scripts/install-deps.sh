@@ -8,7 +8,7 @@ set -euo pipefail
 declare -A group=(
     [build]="cmake make g++ pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev liblzf-dev libpng-dev libfreetype-dev libfontconfig-dev fonts-dejavu-core liboctomap-dev python3 python3-matplotlib python3-numpy"
     [test]="libgtest-dev libgmock-dev libbenchmark-dev clang-format"
-    [peers]="libpcl-dev libcgal-dev python3-open3d libgmp-dev libmpfr-dev"
+    [peers]="libpcl-dev libcgal-dev libtbb-dev python3-open3d libgmp-dev libmpfr-dev"
 )
 # surfgrow view: three.js from Debian, embedded into the binary at build time; its browser test.
 group[build]+=" libjs-three"
