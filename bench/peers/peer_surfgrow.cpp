@@ -35,14 +35,16 @@ int main(int argc, char** argv) {
         cfg.min_pts = args.integer("min-pts", 10);
         cfg.threads = args.integer("threads", 0);
         cfg.seed = static_cast<std::uint64_t>(args.num("seed", 1));
-        cfg.mu_max = args.num("mu-max", 0.0);  // adaptive radius: off by default, as in the CLI
+        // --mu-max: the adaptive radius's ceiling; absent, the library's default (2 mu).
+        if (const double mu_max = args.num("mu-max", 0.0); mu_max > 0)
+            cfg.adaptive_factor = mu_max / cfg.mu;
         rep.threads = cfg.threads;
         rep.params = {{"mu", cfg.mu},
                       {"min_pts", cfg.min_pts},
                       {"alpha", cfg.alpha},
                       {"plane_tolerance", cfg.tolerance()},
                       {"pool_angle_deg", cfg.pool_angle_deg},
-                      {"mu_max", cfg.mu_max},
+                      {"mu_max", cfg.max_radius()},
                       {"seed", static_cast<double>(cfg.seed)}};
 
         surfgrow::GrowResult result;

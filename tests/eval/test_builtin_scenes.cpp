@@ -44,7 +44,7 @@ const Scanned& scanned(const std::string& name) {
 // The demo's settings: the paper's mu = 12 mm with the adaptive radius up to 48 mm.
 GrowerConfig demo_config() {
     GrowerConfig c;
-    c.mu_max = 0.048;
+    c.adaptive_factor = 4.0;  // mu_max 48 mm, as the demo
     return c;
 }
 
