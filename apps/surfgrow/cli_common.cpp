@@ -94,7 +94,8 @@ Vec3d parse_vec3(std::string_view text, std::string_view option) {
     return v;
 }
 
-std::vector<double> parse_lengths_m(std::string_view text, std::string_view option, std::size_t count) {
+std::vector<double> parse_lengths_m(std::string_view text, std::string_view option,
+                                    std::size_t count) {
     std::vector<std::string_view> parts;
     std::string_view rest = text;
     while (true) {
@@ -103,22 +104,25 @@ std::vector<double> parse_lengths_m(std::string_view text, std::string_view opti
         if (comma == std::string_view::npos) break;
         rest.remove_prefix(comma + 1);
     }
-    const std::string expected = std::to_string(count) + " comma-separated lengths (e.g. " +
-                                 (count == 3 ? std::string("0,0,1.2m") : std::string("-1,-1,0,1,1,2m")) + ")";
+    const std::string expected =
+        std::to_string(count) + " comma-separated lengths (e.g. " +
+        (count == 3 ? std::string("0,0,1.2m") : std::string("-1,-1,0,1,1,2m")) + ")";
     if (parts.size() != count) usage_error(option, {"'", text, "' is not ", expected});
     // A unit on the last component alone applies to every component without one ("1,2,0.5m").
     double last_scale = 0;
     {
         double value = 0;
         std::string_view unit;
-        if (split_number(parts.back(), value, unit) && !unit.empty() && !unit_scale(unit, last_scale))
+        if (split_number(parts.back(), value, unit) && !unit.empty() &&
+            !unit_scale(unit, last_scale))
             usage_error(option, {"unknown length unit '", unit, "' (use m, cm, mm)"});
     }
     std::vector<double> out;
     for (const std::string_view part : parts) {
         double value = 0;
         std::string_view unit;
-        if (!split_number(part, value, unit)) usage_error(option, {"'", text, "' is not ", expected});
+        if (!split_number(part, value, unit))
+            usage_error(option, {"'", text, "' is not ", expected});
         double scale = last_scale;
         if (!unit.empty() && !unit_scale(unit, scale))
             usage_error(option, {"unknown length unit '", unit, "' (use m, cm, mm)"});

@@ -26,7 +26,8 @@ Vec3d parse_vec3_length_m(std::string_view text, std::string_view option);
 
 /// Parses `count` comma-separated lengths ("-1,-1,0,1,1,2m": a unit on the last applies to all
 /// without their own); returns metres. Throws Error(kUsage) naming `option`.
-std::vector<double> parse_lengths_m(std::string_view text, std::string_view option, std::size_t count);
+std::vector<double> parse_lengths_m(std::string_view text, std::string_view option,
+                                    std::size_t count);
 
 /// "12 mm", "1.5 m": a length in metres shown in the unit a person would use.
 std::string format_length(double metres);

@@ -83,7 +83,7 @@ void run_view(const ViewArgs& a) {
         const std::vector<std::int32_t> group = plane_of_surface(*layers.planes, r.surfaces.size());
         for (const std::int32_t p : group) s.disk_plane_colors.push_back(render::id_color(p));
         s.planes.emplace();
-        for (const BoundPlane& p : *layers.planes)
+        for (const PlaneOutline& p : *layers.planes)
             s.planes->push_back({p.id, p.boundary, p.holes, render::id_color(p.id)});
     }
     if (layers.coverage) s.path = layers.coverage->goals;

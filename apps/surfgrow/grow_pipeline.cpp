@@ -6,9 +6,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
-#include "surfgrow/io/atomic_output.hpp"
+#include "coverage_options.hpp"
+#include "planes_options.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/io/atomic_output.hpp"
 #include "surfgrow/io/results_io.hpp"
+#include "surfgrow/io/robot_outputs.hpp"
 #include "surfgrow/render/png.hpp"
 #include "surfgrow/render/renderer.hpp"
 #include "surfgrow/render/scene_builder.hpp"
@@ -55,25 +58,33 @@ std::string summary_line(const GrowStats& s) {
 }
 
 std::string stats_table(const GrowStats& s, const CloudUnits& units) {
-    auto pct = [](std::uint64_t a, std::uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; };
+    auto pct = [](std::uint64_t a, std::uint64_t b) {
+        return b ? 100.0 * double(a) / double(b) : 0.0;
+    };
     char buf[256];
     std::string out;
-    std::snprintf(buf, sizeof buf,
-                  "points: %llu in, %llu valid, %llu invalid (NaN/Inf), %llu outside the workspace\n",
-                  static_cast<unsigned long long>(s.points_in), static_cast<unsigned long long>(s.valid_points),
-                  static_cast<unsigned long long>(s.invalid_points), static_cast<unsigned long long>(s.cropped_points));
+    std::snprintf(
+        buf, sizeof buf,
+        "points: %llu in, %llu valid, %llu invalid (NaN/Inf), %llu outside the workspace\n",
+        static_cast<unsigned long long>(s.points_in),
+        static_cast<unsigned long long>(s.valid_points),
+        static_cast<unsigned long long>(s.invalid_points),
+        static_cast<unsigned long long>(s.cropped_points));
     out += buf;
-    std::snprintf(buf, sizeof buf, "registered: %.2f%% by growing (the paper's loop), %.2f%% after the leftover pass\n",
-                  pct(s.registered_grown, s.valid_points), pct(s.registered, s.valid_points));
+    std::snprintf(
+        buf, sizeof buf,
+        "registered: %.2f%% by growing (the paper's loop), %.2f%% after the leftover pass\n",
+        pct(s.registered_grown, s.valid_points), pct(s.registered, s.valid_points));
     out += buf;
-    std::snprintf(buf, sizeof buf,
-                  "home points: %llu tried, %llu surfaces, %llu too sparse, %llu not planar, %llu covered; "
-                  "%llu surfaces with an adapted radius\n",
-                  static_cast<unsigned long long>(s.homes_tried), static_cast<unsigned long long>(s.surfaces),
-                  static_cast<unsigned long long>(s.rejected_sparse),
-                  static_cast<unsigned long long>(s.rejected_nonplanar),
-                  static_cast<unsigned long long>(s.rejected_covered),
-                  static_cast<unsigned long long>(s.adapted_surfaces));
+    std::snprintf(
+        buf, sizeof buf,
+        "home points: %llu tried, %llu surfaces, %llu too sparse, %llu not planar, %llu covered; "
+        "%llu surfaces with an adapted radius\n",
+        static_cast<unsigned long long>(s.homes_tried), static_cast<unsigned long long>(s.surfaces),
+        static_cast<unsigned long long>(s.rejected_sparse),
+        static_cast<unsigned long long>(s.rejected_nonplanar),
+        static_cast<unsigned long long>(s.rejected_covered),
+        static_cast<unsigned long long>(s.adapted_surfaces));
     out += buf;
     if (s.range_known) {
         out += "registered by range from the sensor:\n";
@@ -92,20 +103,25 @@ std::string stats_table(const GrowStats& s, const CloudUnits& units) {
 std::string sparsity_hint(const GrowStats& s, const GrowerConfig& config, const CloudUnits& units) {
     // Only when registration is poor and sparse home points are the main reason.
     if (s.valid_points == 0 || s.registered_fraction() >= 0.9) return "";
-    if (s.rejected_sparse < s.rejected_nonplanar || s.rejected_sparse < s.homes_tried / 4) return "";
+    if (s.rejected_sparse < s.rejected_nonplanar || s.rejected_sparse < s.homes_tried / 4)
+        return "";
     const bool adaptive = config.max_radius() > config.mu;
     const std::string advice =
-        adaptive ? cat({"Even the adaptive radius (up to ", length_argument(config.max_radius() * units.metres),
-                        ") finds too few: try a larger --mu-max or --mu, or --crop-radius to the robot's "
-                        "workspace"})
-                 : cat({"Try --mu-max ", length_argument(4 * config.mu * units.metres),
-                        " (adaptive radius), a larger --mu, or --crop-radius to the robot's workspace"});
-    const std::string hint = cat(
-        {"note: only ", std::to_string(static_cast<int>(100 * s.registered_fraction())), "% registered: ",
-         std::to_string(s.rejected_sparse), " home points had fewer than ", std::to_string(config.min_pts),
-         " neighbours within ", format_length(config.mu * units.metres),
-         " (points too far apart; the paper's mu suits a ~1 m workspace).\n      ", advice,
-         "; --stats shows registration by range."});
+        adaptive
+            ? cat({"Even the adaptive radius (up to ",
+                   length_argument(config.max_radius() * units.metres),
+                   ") finds too few: try a larger --mu-max or --mu, or --crop-radius to the "
+                   "robot's "
+                   "workspace"})
+            : cat({"Try --mu-max ", length_argument(4 * config.mu * units.metres),
+                   " (adaptive radius), a larger --mu, or --crop-radius to the robot's workspace"});
+    const std::string hint =
+        cat({"note: only ", std::to_string(static_cast<int>(100 * s.registered_fraction())),
+             "% registered: ", std::to_string(s.rejected_sparse), " home points had fewer than ",
+             std::to_string(config.min_pts), " neighbours within ",
+             format_length(config.mu * units.metres),
+             " (points too far apart; the paper's mu suits a ~1 m workspace).\n      ", advice,
+             "; --stats shows registration by range."});
     return hint;
 }
 
@@ -146,6 +162,45 @@ GrowRun grow_and_write(const PointCloud& cloud, const GrowerConfig& config,
         tx.add("surfaces.png", [&](std::ostream& o) { render::write_png(image, o); });
     }
     run.write_seconds = since(t0);
+
+    // The robot outputs, each from the result in memory (the subcommands redo them from files).
+    nlohmann::json robot_seconds = nlohmann::json::object();
+    auto t1 = Clock::now();
+    if (outputs.planes) {
+        BoundPlaneConfig pc = *outputs.planes;
+        pc.mu = config.mu;
+        pc.threads = config.threads;
+        const BoundPlanes planes = compute_bound_planes(cloud, r.surfaces, r.labels, pc);
+        stage_planes(tx, planes, meta, outputs.planes_obj);
+        run.robot.planes = planes_summary(planes, units.name);
+        robot_seconds["planes"] = since(t1);
+        if (outputs.coverage) {
+            t1 = Clock::now();
+            CoverageConfig cc = *outputs.coverage;
+            cc.threads = config.threads;
+            const CoveragePlan plan = plan_coverage(planes, r.surfaces, cc);
+            stage_coverage(tx, plan, meta);
+            run.robot.coverage = coverage_summary(plan, units.name);
+            robot_seconds["coverage"] = since(t1);
+        }
+    }
+    if (outputs.occupancy || outputs.octomap) {
+        t1 = Clock::now();
+        io::OccupancyOutputs which;
+        which.ply = which.json = outputs.occupancy;
+        which.octomap = outputs.octomap;
+        const io::OccupancySummary s = io::add_occupancy_outputs(tx, cloud, r, config, meta, which);
+        run.robot.occupancy = cat({std::to_string(s.occupied_cubes), " occupied cubes"});
+        if (s.octomap_written)
+            run.robot.occupancy +=
+                cat({", environment.bt with ", std::to_string(s.octomap.free), " free leaves"});
+        robot_seconds["occupancy"] = since(t1);
+    }
+    if (outputs.collision) {
+        t1 = Clock::now();
+        io::add_collision_outputs(tx, r, meta);
+        robot_seconds["collision"] = since(t1);
+    }
     // run.json: what varies between identical runs (timings, threads), kept out of the results.
     const StageTimes& t = r.stats.seconds;
     const nlohmann::json record = {
@@ -159,7 +214,8 @@ GrowRun grow_and_write(const PointCloud& cloud, const GrowerConfig& config,
           {"attach", t.attach},
           {"finish", t.finish},
           {"algorithm", t.total()},
-          {"write", run.write_seconds}}},
+          {"write", run.write_seconds},
+          {"robot_outputs", robot_seconds}}},
         {"summary", summary_line(r.stats)},
     };
     tx.add("run.json", [&](std::ostream& o) { o << record.dump(2) << "\n"; });

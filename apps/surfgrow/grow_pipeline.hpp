@@ -2,8 +2,11 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
+#include "surfgrow/core/bound_planes.hpp"
+#include "surfgrow/core/coverage.hpp"
 #include "surfgrow/core/grower_config.hpp"
 #include "surfgrow/core/point_cloud.hpp"
 #include "surfgrow/core/surface_grower.hpp"
@@ -11,11 +14,27 @@
 
 namespace surfgrow::cli {
 
-/// Which files to write besides surfaces.ply / surfaces.json / run.json.
+/// Which files to write besides surfaces.ply / surfaces.json / run.json. The robot outputs are on
+/// by default: `surfgrow grow` leaves everything a planner needs next to the surfaces.
 struct OutputChoice {
     bool labels = true;   ///< labels.txt
     bool csv = false;     ///< surfaces.csv
     bool picture = true;  ///< surfaces.png (iso view)
+    /// planes.json and planes.ply (bound planes); mu and threads are taken from the grow config.
+    std::optional<BoundPlaneConfig> planes = BoundPlaneConfig{};
+    bool planes_obj = false;  ///< also planes.obj
+    /// coverage.json and coverage.csv over the bound planes (only when planes are computed).
+    std::optional<CoverageConfig> coverage = CoverageConfig{};
+    bool occupancy = true;  ///< occupancy.ply and occupancy.json
+    bool octomap = true;    ///< environment.bt (OctoMap, free space carved from the scan origins)
+    bool collision = true;  ///< collision_spheres.json
+};
+
+/// One line per robot output that was written, for --stats: planes, coverage, occupancy.
+struct RobotSummary {
+    std::string planes;
+    std::string coverage;
+    std::string occupancy;
 };
 
 /// The cloud's length unit and how it maps to metres (for messages and the files' "units").
@@ -26,6 +45,7 @@ struct CloudUnits {
 
 struct GrowRun {
     GrowResult result;
+    RobotSummary robot;
     double read_seconds = 0.0;
     double write_seconds = 0.0;
 };
@@ -48,7 +68,8 @@ std::string stats_table(const GrowStats& stats, const CloudUnits& units);
 
 /// Advice for a result that registers little because the cloud is too sparse for mu, or "" if
 /// none applies. Printed on stderr: the parameters are the user's to change, not ours.
-std::string sparsity_hint(const GrowStats& stats, const GrowerConfig& config, const CloudUnits& units);
+std::string sparsity_hint(const GrowStats& stats, const GrowerConfig& config,
+                          const CloudUnits& units);
 
 /// A progress callback for GrowerConfig::progress that draws on stderr when it is a terminal,
 /// or nothing otherwise.

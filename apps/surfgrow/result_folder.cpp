@@ -123,7 +123,9 @@ GrownCloud read_grown_cloud(const fs::path& cloud_file, const ResultFolder& fold
     return g;
 }
 
-io::StoredResult read_grown_result(const fs::path& dir) { return read_result_folder(dir).result; }
+io::StoredResult read_grown_result(const fs::path& dir) {
+    return read_result_folder(dir).result;
+}
 
 GrownFolder read_grown_folder(const fs::path& dir, const fs::path& cloud_file) {
     ResultFolder folder = read_result_folder(dir);

@@ -13,8 +13,8 @@
 
 namespace surfgrow::cli {
 
-/// A bound plane: a plane through many surfaces, with its boundary polygon.
-struct BoundPlane {
+/// One connected piece of a bound plane (planes.json) in the result's frame, for drawing.
+struct PlaneOutline {
     std::int32_t id = -1;
     Vec3d normal = Vec3d::UnitZ();
     std::vector<Vec3d> boundary;            ///< outer polygon, in order, not closed (>= 3)
@@ -30,8 +30,8 @@ struct CoveragePath {
 /// What the folder holds beyond surfaces.json. Positions are in the result's frame (file
 /// coordinates minus meta.offset), like io::StoredResult's.
 struct ResultLayers {
-    std::optional<std::vector<BoundPlane>> planes;  ///< nullopt: no planes.json
-    std::optional<CoveragePath> coverage;           ///< nullopt: no coverage.json
+    std::optional<std::vector<PlaneOutline>> planes;  ///< nullopt: no planes.json
+    std::optional<CoveragePath> coverage;             ///< nullopt: no coverage.json
 };
 
 /// Reads dir/planes.json and dir/coverage.json where they exist. Throws Error(kMalformedInput)
@@ -42,7 +42,7 @@ struct ResultLayers {
 
 /// For each of `surface_count` surfaces, the id of the bound plane that lists it (-1: none; the
 /// first plane listing it wins).
-[[nodiscard]] std::vector<std::int32_t> plane_of_surface(const std::vector<BoundPlane>& planes,
+[[nodiscard]] std::vector<std::int32_t> plane_of_surface(const std::vector<PlaneOutline>& planes,
                                                          std::size_t surface_count);
 
 }  // namespace surfgrow::cli

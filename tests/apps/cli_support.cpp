@@ -5,26 +5,25 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <nlohmann/json.hpp>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 
 #include "support/test_support.hpp"
+#include "surfgrow/core/bound_planes.hpp"
+#include "surfgrow/core/coverage.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/cloud_io.hpp"
+#include "surfgrow/io/coverage_io.hpp"
+#include "surfgrow/io/planes_io.hpp"
 
 namespace surfgrow::test {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 
 namespace {
 
 const Vec3d kBoxMin(-0.2, -0.15, 0.4), kBoxMax(0.2, 0.15, 0.7);
-
-json xyz(const Vec3d& p) {
-    return json::array({p.x(), p.y(), p.z()});
-}
 
 }  // namespace
 
@@ -55,43 +54,70 @@ GrownBox grow_box(const fs::path& dir) {
     box.out = dir / "out";
     io::write_cloud(box.cloud, box.points);
     const CliRun r =
-        run_surfgrow(cat({"grow ", quoted(box.cloud), " -o ", quoted(box.out), " --seed 1 -q"}));
+        run_surfgrow(cat({"grow ", quoted(box.cloud), " -o ", quoted(box.out),
+                          " --seed 1 -q --no-planes --no-occupancy --no-octomap --no-collision"}));
     if (r.code != 0) throw std::runtime_error("surfgrow grow failed: " + r.out);
     box.result = io::read_result_json(box.out / "surfaces.json");
     return box;
 }
 
 std::size_t write_layer_fixtures(const GrownBox& box) {
-    json planes = json::array();
-    int id = 0;
+    // The box's six faces as bound planes, in the format `surfgrow planes` writes.
+    BoundPlanes planes;
+    planes.plane_of_patch.assign(box.result.surfaces.size(), -1);
+    planes.config.mu = box.result.config.mu;
+    planes.stats.patches = box.result.surfaces.size();
     for (const Rect& f : box_faces(kBoxMin, kBoxMax)) {
-        const Vec3d n = f.normal();
-        json boundary = json::array();
+        const auto id = static_cast<std::int32_t>(planes.planes.size());
+        BoundPlane p;
+        p.normal = f.normal();
+        p.centroid = f.center;
+        p.u_axis = f.u;
+        p.v_axis = p.normal.cross(p.u_axis);
+        PolygonWithHoles poly;
         for (const auto& [a, b] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}})
-            boundary.push_back(xyz(f.center + a * f.half_u * f.u + b * f.half_v * f.v));
-        json surfaces = json::array();
+            poly.outer.emplace_back(a * f.half_u, b * f.half_v);
+        for (const Vec2d& q : poly.outer) p.bounds.add(p.to_world(q));
+        p.polygons.push_back(poly);
+        p.area = 4 * f.half_u * f.half_v;
         for (std::size_t i = 0; i < box.result.surfaces.size(); ++i) {
             const Surface& s = box.result.surfaces[i];
-            if (std::abs(s.normal.dot(n)) > 0.9 && std::abs(n.dot(s.home - f.center)) < 0.01)
-                surfaces.push_back(i);
+            if (planes.plane_of_patch[i] < 0 && std::abs(s.normal.dot(p.normal)) > 0.9 &&
+                std::abs(p.normal.dot(s.home - f.center)) < 0.01) {
+                planes.plane_of_patch[i] = id;
+                p.patches.push_back(static_cast<std::uint32_t>(i));
+                p.point_count += s.point_count;
+            }
         }
-        planes.push_back(
-            {{"id", id++}, {"normal", xyz(n)}, {"boundary", boundary}, {"surfaces", surfaces}});
+        planes.stats.area += p.area;
+        planes.stats.points += p.point_count;
+        planes.stats.patches_merged += p.patches.size();
+        planes.planes.push_back(std::move(p));
     }
-    const json planes_file = {
-        {"format", "surfgrow-planes"}, {"version", 1}, {"units", "m"}, {"planes", planes}};
-    write_bytes(box.out / "planes.json", planes_file.dump(1));
+    std::ostringstream planes_file;
+    io::write_planes_json(planes_file, planes, box.result.meta);
+    write_bytes(box.out / "planes.json", planes_file.str());
 
-    json goals = json::array();
+    // A zigzag over one face, as a blasting nozzle would go, in the format `surfgrow coverage`
+    // writes.
+    CoveragePlan plan;
+    plan.config.blast_radius = box.result.config.mu;
     for (int row = 0; row < 4; ++row)
         for (int k = 0; k < 6; ++k) {
-            const int col = row % 2 ? 5 - k : k;  // a zigzag, as a blasting nozzle would go
-            goals.push_back({{"position", xyz({-0.15, -0.1 + 0.04 * col, 0.46 + 0.06 * row})}});
+            const int col = row % 2 ? 5 - k : k;
+            CoverageGoal g;
+            g.row = static_cast<std::uint32_t>(row);
+            g.position = Vec3d(-0.15, -0.1 + 0.04 * col, 0.46 + 0.06 * row);
+            g.tool_position = g.position - 0.3 * g.tool_axis;
+            plan.goals.push_back(g);
         }
-    const json coverage = {
-        {"format", "surfgrow-coverage"}, {"version", 1}, {"units", "m"}, {"goals", goals}};
-    write_bytes(box.out / "coverage.json", coverage.dump(1));
-    return goals.size();
+    plan.per_plane.push_back({0, static_cast<std::uint32_t>(plan.goals.size()), 0, 0.0, 0.0});
+    plan.stats.goals = plan.goals.size();
+    plan.stats.planes = 1;
+    std::ostringstream coverage_file;
+    io::write_coverage_json(coverage_file, plan, box.result.meta);
+    write_bytes(box.out / "coverage.json", coverage_file.str());
+    return plan.goals.size();
 }
 
 }  // namespace surfgrow::test

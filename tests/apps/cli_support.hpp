@@ -34,8 +34,8 @@ struct GrownBox {
 GrownBox grow_box(const std::filesystem::path& dir);
 
 /// Writes out/planes.json (one bound plane per box face: its rectangle and the surfaces on it)
-/// and out/coverage.json (a zigzag of goals just inside the face x = -0.2), in the formats of
-/// docs/viewer.md. Returns the number of goals.
+/// and out/coverage.json (a zigzag of goals just inside the face x = -0.2), as `surfgrow planes`
+/// and `surfgrow coverage` write them. Returns the number of goals.
 std::size_t write_layer_fixtures(const GrownBox& box);
 
 }  // namespace surfgrow::test

@@ -71,8 +71,10 @@ TEST_F(CliGrow, WritesEveryOutputAndTheSummaryLine) {
     EXPECT_NE(r.out.find(std::to_string(cloud_.size()) + " points -> "), std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find("% registered"), std::string::npos) << r.out;
-    for (const char* f : {"surfaces.ply", "surfaces.json", "surfaces.csv", "labels.txt", "run.json",
-                          "surfaces.png"})
+    for (const char* f :
+         {"surfaces.ply", "surfaces.json", "surfaces.csv", "labels.txt", "run.json", "surfaces.png",
+          "planes.json", "planes.ply", "coverage.json", "coverage.csv", "occupancy.ply",
+          "occupancy.json", "environment.bt", "collision_spheres.json"})
         EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / f)) << f;
     // Labels: one per input point, NaN points unregistered, ids within range.
     const auto labels = io::read_labels_txt(dir_ / "out" / "labels.txt");
@@ -100,11 +102,47 @@ TEST_F(CliGrow, ByteIdenticalOutputsForAnyThreadCount) {
                      " --seed 9 --threads " + std::to_string(t));
         ASSERT_EQ(r.code, 0) << r.out;
     }
-    for (const char* f : {"surfaces.ply", "surfaces.json", "labels.txt", "surfaces.png"}) {
+    for (const char* f :
+         {"surfaces.ply", "surfaces.json", "labels.txt", "surfaces.png", "planes.json",
+          "planes.ply", "coverage.json", "coverage.csv", "occupancy.ply", "occupancy.json",
+          "environment.bt", "collision_spheres.json"}) {
         const std::string ref = test::read_bytes(dir_ / "t1" / f);
         EXPECT_EQ(test::read_bytes(dir_ / "t2" / f), ref) << f;
         EXPECT_EQ(test::read_bytes(dir_ / "t4" / f), ref) << f;
     }
+}
+
+// The robot outputs grow writes are the ones their subcommands make from the stored result.
+TEST_F(CliGrow, RobotOutputsMatchTheirSubcommands) {
+    const fs::path out = dir_ / "out", sub = dir_ / "sub";
+    ASSERT_EQ(surfgrow(cat({"grow ", q(input_), " -o ", q(out), " --seed 4 -q"})).code, 0);
+    ASSERT_EQ(surfgrow(cat({"grow ", q(input_), " -o ", q(sub),
+                            " --seed 4 -q --no-planes --no-occupancy --no-octomap --no-collision"}))
+                  .code,
+              0);
+    for (const char* f : {"planes.json", "coverage.json", "occupancy.json", "environment.bt",
+                          "collision_spheres.json"})
+        EXPECT_FALSE(fs::exists(sub / f)) << f;
+    const std::string c = cat({" --cloud ", q(input_), " -q"});
+    ASSERT_EQ(surfgrow(cat({"planes ", q(sub), c})).code, 0);
+    ASSERT_EQ(surfgrow(cat({"coverage ", q(sub), " -q"})).code, 0);
+    ASSERT_EQ(surfgrow(cat({"occupancy ", q(sub), c})).code, 0);
+    for (const char* f : {"planes.json", "planes.ply", "coverage.json", "coverage.csv",
+                          "occupancy.ply", "occupancy.json", "environment.bt"})
+        EXPECT_EQ(test::read_bytes(sub / f), test::read_bytes(out / f)) << f;
+    // --stats reports each robot output; --no-coverage keeps the planes.
+    const CliRun r = surfgrow(cat({"grow ", q(input_), " -o ", q(dir_ / "nc"),
+                                   " --seed 4 --stats --no-coverage --no-picture"}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find(" planes, "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("occupied cubes"), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::exists(dir_ / "nc" / "planes.json"));
+    EXPECT_FALSE(fs::exists(dir_ / "nc" / "coverage.json"));
+    // A bad robot-output parameter is refused before anything is written.
+    const CliRun bad =
+        surfgrow(cat({"grow ", q(input_), " -o ", q(dir_ / "bad"), " --angle-band 40:5"}));
+    EXPECT_EQ(bad.code, static_cast<int>(ErrorCode::kInvalidParameter)) << bad.out;
+    EXPECT_FALSE(fs::exists(dir_ / "bad" / "surfaces.json"));
 }
 
 TEST_F(CliGrow, MillimetreCloudsGiveTheSameSurfaces) {

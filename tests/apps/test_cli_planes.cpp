@@ -63,8 +63,8 @@ class CliPlanes : public ::testing::Test {
         cloud_ = dir_ / "l.ply";
         io::write_cloud(cloud_, l_cloud());
         out_ = dir_ / "out";
-        const CliRun r = surfgrow(cat(
-            {"grow ", q(cloud_), " -o ", q(out_), " --no-picture --viewpoint 0.3,0.4,0.5m -q"}));
+        const CliRun r = surfgrow(cat({"grow ", q(cloud_), " -o ", q(out_),
+                                       " --no-picture --no-planes --viewpoint 0.3,0.4,0.5m -q"}));
         ASSERT_EQ(r.code, 0) << r.out;
     }
     test::TempDir dir_;

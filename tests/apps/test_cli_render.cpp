@@ -2,6 +2,8 @@
 // pixel by pixel against where the renderer's camera puts the disks.
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -10,8 +12,10 @@
 
 #include "cli_support.hpp"
 #include "support/test_support.hpp"
+#include "surfgrow/core/bound_planes.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/io/planes_io.hpp"
 #include "surfgrow/render/png.hpp"
 #include "surfgrow/render/renderer.hpp"
 #include "surfgrow/render/scene_builder.hpp"
@@ -170,19 +174,23 @@ TEST_F(CliRender, ColourByPlaneUsesTheBoundPlanesColours) {
     test::TempDir tmp;
     const fs::path out = tmp / "out";
     fs::copy(box_->out, out);
-    // Two bound planes: the horizontal faces (id 3) and the vertical ones (id 8).
-    nlohmann::json planes = nlohmann::json::array();
-    for (const int id : {3, 8}) {
-        nlohmann::json surfaces = nlohmann::json::array();
-        for (std::size_t i = 0; i < box_->result.surfaces.size(); ++i)
-            if ((std::abs(box_->result.surfaces[i].normal.z()) > 0.7) == (id == 3))
-                surfaces.push_back(i);
-        planes.push_back({{"id", id},
-                          {"normal", {0, 0, 1}},
-                          {"boundary", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
-                          {"surfaces", surfaces}});
+    // Bound planes 3 and 8 (of 9) hold the surfaces: 3 the horizontal faces, 8 the vertical ones.
+    BoundPlanes planes;
+    planes.stats.patches = box_->result.surfaces.size();
+    planes.plane_of_patch.assign(box_->result.surfaces.size(), -1);
+    for (int id = 0; id < 9; ++id) {
+        BoundPlane p;
+        p.polygons.push_back({{{0, 0}, {1, 0}, {0, 1}}, {}});
+        for (std::size_t i = 0; i < box_->result.surfaces.size() && (id == 3 || id == 8); ++i)
+            if ((std::abs(box_->result.surfaces[i].normal.z()) > 0.7) == (id == 3)) {
+                p.patches.push_back(static_cast<std::uint32_t>(i));
+                planes.plane_of_patch[i] = id;
+            }
+        planes.planes.push_back(p);
     }
-    test::write_bytes(out / "planes.json", nlohmann::json{{"planes", planes}}.dump());
+    std::ostringstream planes_file;
+    io::write_planes_json(planes_file, planes, box_->result.meta);
+    test::write_bytes(out / "planes.json", planes_file.str());
     auto share_of_plane_hues = [&](const std::string& colour_by) {
         const fs::path png = tmp / cat({colour_by, ".png"});
         const test::CliRun r = run_surfgrow(cat({"render ", quoted(out), " -o ", quoted(png),

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <regex>
 
@@ -11,6 +12,7 @@
 #include "support/test_support.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/io/planes_io.hpp"
 #include "surfgrow/render/scene_builder.hpp"
 #include "surfgrow/view/assets.hpp"
 #include "surfgrow/view/base64.hpp"
@@ -199,10 +201,10 @@ TEST_F(CliView, OptionalLayersComeFromPlanesAndCoverageFiles) {
     // Colouring by plane: every disk of a plane gets the plane's colour.
     ASSERT_TRUE(layers["surfaces"]["plane_color"].is_string());
     const auto plane_rgb = array_of<std::uint8_t>(page, layers["surfaces"]["plane_color"]);
-    const json planes = json::parse(test::read_bytes(box.out / "planes.json"));
-    for (const json& p : planes["planes"])
-        for (const json& s : p["surfaces"])
-            EXPECT_EQ(plane_rgb[3 * s.get<std::size_t>()], render::id_color(p["id"]).r);
+    const io::StoredPlanes planes = io::read_planes_json(box.out / "planes.json");
+    for (std::size_t id = 0; id < planes.planes.planes.size(); ++id)
+        for (const std::uint32_t s : planes.planes.planes[id].patches)
+            EXPECT_EQ(plane_rgb[3 * s], render::id_color(static_cast<std::int32_t>(id)).r);
 }
 
 TEST_F(CliView, SameBytesEveryRun) {
@@ -220,6 +222,17 @@ TEST_F(CliView, BadInputsGiveTheirCodeAndWriteNoPage) {
         fs::copy(box_->out, tmp / name);
         test::write_bytes(tmp / name / file, text);
         return quoted(tmp / name);
+    };
+    // A real planes.json (the box's faces), edited to break it.
+    auto edited_planes = [&](const char* name, const std::function<void(json&)>& edit) {
+        test::GrownBox box = *box_;
+        box.out = tmp / name;
+        fs::copy(box_->out, box.out);
+        test::write_layer_fixtures(box);
+        json j = json::parse(test::read_bytes(box.out / "planes.json"));
+        edit(j);
+        test::write_bytes(box.out / "planes.json", j.dump());
+        return quoted(box.out);
     };
     const std::string out = quoted(box_->out);
     struct Case {
@@ -241,16 +254,17 @@ TEST_F(CliView, BadInputsGiveTheirCodeAndWriteNoPage) {
          ErrorCode::kMalformedInput, "is this the cloud that was grown"},
         {"planes.json not JSON", with_layer("p1", "planes.json", "{planes"),
          ErrorCode::kMalformedInput, "planes.json"},
-        {"plane with an unknown surface",
-         with_layer("p2", "planes.json",
-                    R"({"planes": [{"id": 0, "normal": [0, 0, 1], "surfaces": [999999],
-                        "boundary": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}]})"),
-         ErrorCode::kMalformedInput, "surface 999999"},
+        {"planes of another result",
+         edited_planes(
+             "p2",
+             [](json& j) { j["summary"]["patches"] = j["summary"]["patches"].get<int>() + 5; }),
+         ErrorCode::kMalformedInput, "run `surfgrow planes` again"},
         {"plane of two vertices",
-         with_layer("p3", "planes.json",
-                    R"({"planes": [{"id": 0, "normal": [0, 0, 1], "surfaces": [],
-                        "boundary": [[0, 0, 0], [1, 0, 0]]}]})"),
-         ErrorCode::kMalformedInput, "fewer than 3 vertices"},
+         edited_planes("p3",
+                       [](json& j) {
+                           j["planes"][0]["polygons"][0]["outer"] = json::array({{0, 0}, {1, 0}});
+                       }),
+         ErrorCode::kMalformedInput, "a ring needs at least 3"},
         {"coverage in other units",
          with_layer("c1", "coverage.json", R"({"units": "mm", "goals": []})"),
          ErrorCode::kMalformedInput, "coverage.json"},

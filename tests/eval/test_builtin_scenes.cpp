@@ -87,7 +87,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, BuiltinScene,
 TEST(BuiltinSceneIBeam, ThePapersSettingsAloneMeetTheWorkspaceBounds) {
     // mu = 12 mm, no adaptive radius: the workspace (within 1 m) is dense enough; beyond it the
     // registered share falls (reported by band, not asserted).
-    const EvalReport r = grow_and_evaluate("ibeam-channel", GrowerConfig{}).report;
+    GrowerConfig paper;
+    paper.adaptive_factor = 1.0;
+    const EvalReport r = grow_and_evaluate("ibeam-channel", paper).report;
     EXPECT_GE(r.planar_workspace.fraction(), 0.99);
     EXPECT_LE(r.normal_workspace_deg.median, 3.0);
     EXPECT_LE(r.normal_deg.median, 3.0);

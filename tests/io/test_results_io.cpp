@@ -16,7 +16,8 @@ namespace {
 GrowResult small_result(const GrowerConfig& cfg) {
     PointCloud cloud;
     std::mt19937_64 rng(1);
-    for (const auto& f : test::box_faces({0, 0, 0}, {0.2, 0.15, 0.1})) test::sample_rect(f, 0.005, 0.3, 0.001, rng, cloud.points);
+    for (const auto& f : test::box_faces({0, 0, 0}, {0.2, 0.15, 0.1}))
+        test::sample_rect(f, 0.005, 0.3, 0.001, rng, cloud.points);
     cloud.points.push_back(Vec3f::Constant(std::nanf("")));
     return grow_surfaces(cloud, cfg);
 }
@@ -31,7 +32,8 @@ TEST(ResultsIo, JsonRoundTripKeepsSurfacesAndSummary) {
     meta.offset = Vec3d(1000, -2000, 5);
     meta.input = "box.ply";
     test::TempDir dir;
-    write_atomically(dir / "surfaces.json", [&](std::ostream& o) { write_result_json(o, r, cfg, meta); });
+    write_atomically(dir / "surfaces.json",
+                     [&](std::ostream& o) { write_result_json(o, r, cfg, meta); });
     const StoredResult back = read_result_json(dir / "surfaces.json");
     EXPECT_EQ(back.meta.units, "m");
     EXPECT_EQ(back.meta.offset, meta.offset);
@@ -72,7 +74,8 @@ TEST(ResultsIo, SurfacesPlyHeaderAndSize) {
     const std::string s = out.str();
     const auto end = s.find("end_header\n");
     ASSERT_NE(end, std::string::npos);
-    EXPECT_NE(s.find("element vertex " + std::to_string(r.surfaces.size()) + "\n"), std::string::npos);
+    EXPECT_NE(s.find("element vertex " + std::to_string(r.surfaces.size()) + "\n"),
+              std::string::npos);
     EXPECT_NE(s.find("property float nx\n"), std::string::npos);
     const std::size_t record = 3 * 4 + 3 * 4 + 4 + 8 + 4 + 4;
     EXPECT_EQ(s.size() - (end + 11), r.surfaces.size() * record);
@@ -107,7 +110,8 @@ TEST(ResultsIo, CsvHasOneRowPerSurface) {
     std::ostringstream out;
     write_surfaces_csv(out, r.surfaces, {});
     const std::string s = out.str();
-    EXPECT_EQ(static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')), r.surfaces.size() + 1);
+    EXPECT_EQ(static_cast<std::size_t>(std::count(s.begin(), s.end(), '\n')),
+              r.surfaces.size() + 1);
     EXPECT_EQ(s.rfind("id,home_x", 0), 0u);
 }
 
@@ -119,7 +123,8 @@ TEST(ResultsIo, BadResultFilesAreRejectedClearly) {
             ADD_FAILURE() << "accepted " << f;
         } catch (const Error& e) {
             EXPECT_EQ(e.code(), code) << e.what();
-            EXPECT_NE(std::string(e.what()).find(f.filename().string()), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(f.filename().string()), std::string::npos)
+                << e.what();
         }
     };
     expect_code(dir / "missing.json", ErrorCode::kCannotOpen);
@@ -145,7 +150,8 @@ TEST(AtomicOutput, FailedTransactionLeavesPreviousOutputs) {
     try {
         OutputTransaction tx(dir.path());
         tx.add("surfaces.json", [](std::ostream& o) { o << "new"; });
-        tx.add("labels.txt", [](std::ostream&) { throw Error(ErrorCode::kMalformedInput, "late failure"); });
+        tx.add("labels.txt",
+               [](std::ostream&) { throw Error(ErrorCode::kMalformedInput, "late failure"); });
         tx.commit();
         FAIL();
     } catch (const Error&) {

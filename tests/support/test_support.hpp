@@ -1,8 +1,8 @@
 // Helpers shared by the test executables: temporary folders, optional real data, synthetic planes.
 #pragma once
 
-#include <Eigen/Geometry>  // Rect::normal() uses cross()
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>  // Rect::normal() uses cross()
 
 #include <Eigen/Geometry>  // Vec3d::cross in Rect::normal() and sample_rect
 

@@ -12,6 +12,7 @@
 #include "headless_chromium.hpp"
 #include "support/test_support.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/io/planes_io.hpp"
 #include "surfgrow/render/png.hpp"
 
 namespace surfgrow {
@@ -200,13 +201,10 @@ TEST_F(ViewInBrowser, BoundPlanesAndCoveragePathDraw) {
               true);
     click("sg-layer-surfaces");  // leave the planes and the path alone in the picture
 
-    const json planes = json::parse(test::read_bytes(dir_->path() / "layered" / "planes.json"));
+    const io::StoredPlanes planes = io::read_planes_json(dir_->path() / "layered" / "planes.json");
     std::vector<Pixel> plane_pixels, goal_pixels;
-    for (const json& p : planes["planes"]) {
-        Vec3d c = Vec3d::Zero();
-        for (const json& v : p["boundary"]) c += Vec3d(v[0], v[1], v[2]) / 4.0;
-        if (const auto px = project(c)) plane_pixels.push_back(*px);
-    }
+    for (const BoundPlane& p : planes.planes.planes)
+        if (const auto px = project(p.centroid + planes.meta.offset)) plane_pixels.push_back(*px);
     const json coverage = json::parse(test::read_bytes(dir_->path() / "layered" / "coverage.json"));
     for (const json& g : coverage["goals"])
         if (const auto px = project(Vec3d(g["position"][0], g["position"][1], g["position"][2])))

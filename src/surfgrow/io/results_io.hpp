@@ -14,16 +14,17 @@ namespace surfgrow::io {
 
 /// What a result needs besides the algorithm's output to be read correctly later.
 struct ResultMeta {
-    std::string units = "m";         ///< the cloud's length unit, which every length is in
-    Vec3d offset = Vec3d::Zero();    ///< PointCloud::offset: added to every position written
-    std::string input;               ///< the input file's name, for the record
+    std::string units = "m";       ///< the cloud's length unit, which every length is in
+    Vec3d offset = Vec3d::Zero();  ///< PointCloud::offset: added to every position written
+    std::string input;             ///< the input file's name, for the record
 };
 
 /// surfaces.ply: one vertex per surface at its home point with its unit normal (nx, ny, nz), so
 /// Open3D, PCL and CloudCompare open it as a point cloud with normals; extra properties radius,
 /// plane_offset (d in n.x + d = 0), point_count and mean_residual. Binary little-endian; positions
 /// in double when the cloud had an offset (georeferenced), float otherwise.
-void write_surfaces_ply(std::ostream& out, std::span<const Surface> surfaces, const ResultMeta& meta);
+void write_surfaces_ply(std::ostream& out, std::span<const Surface> surfaces,
+                        const ResultMeta& meta);
 
 /// surfaces.json: parameters, the summary statistics, and every surface (plane, normal, home
 /// point, centroid, eigenvalues, radius, bounds, members). Deterministic: no timings, no thread
@@ -32,7 +33,8 @@ void write_result_json(std::ostream& out, const GrowResult& result, const Grower
                        const ResultMeta& meta);
 
 /// surfaces.csv: the same surfaces as one row each, for spreadsheets and robot programs.
-void write_surfaces_csv(std::ostream& out, std::span<const Surface> surfaces, const ResultMeta& meta);
+void write_surfaces_csv(std::ostream& out, std::span<const Surface> surfaces,
+                        const ResultMeta& meta);
 
 /// labels.txt: the surface id of every input point (-1 if unregistered), one per line, input order.
 void write_labels_txt(std::ostream& out, std::span<const std::int32_t> labels);
