@@ -27,8 +27,8 @@ const Vec3d kBoxMin(-0.2, -0.15, 0.4), kBoxMax(0.2, 0.15, 0.7);
 
 }  // namespace
 
-CliRun run_surfgrow(const std::string& args) {
-    const std::string cmd = cat({SURFGROW_CLI, " ", args, " 2>&1"});
+CliRun run_surfgrow(const std::string& args, const std::string& env) {
+    const std::string cmd = cat({env, SURFGROW_CLI, " ", args, " 2>&1"});
     CliRun r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;

@@ -1,5 +1,5 @@
-// Shared by the end-to-end tests of the picture commands: running the real `surfgrow` binary,
-// and a small grown result to draw (a box, with bound-plane and coverage-path fixtures).
+// Shared by the end-to-end tests of the CLI: running the real `surfgrow` binary, and a small
+// grown result to draw (a box, with bound-plane and coverage-path fixtures).
 #pragma once
 
 #include <filesystem>
@@ -15,8 +15,9 @@ struct CliRun {
     std::string out;  ///< stdout and stderr together
 };
 
-/// Runs `surfgrow <args>` (arguments already shell-quoted where needed).
-CliRun run_surfgrow(const std::string& args);
+/// Runs `surfgrow <args>` (arguments already shell-quoted where needed); `env` (e.g.
+/// "SURFGROW_X=1 ") goes before it.
+CliRun run_surfgrow(const std::string& args, const std::string& env = "");
 
 /// A path in single quotes for the shell.
 std::string quoted(const std::filesystem::path& p);

@@ -7,6 +7,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 
+#include "cli_support.hpp"
 #include "support/test_support.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
@@ -19,26 +20,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-    int code = -1;
-    std::string out;  // stdout and stderr together
-};
+using test::CliRun;
 
 // Runs the CLI with arguments (already shell-quoted where needed); `env` goes before it.
 CliRun surfgrow(const std::string& args, const std::string& env = "") {
-    const std::string cmd = cat({env, SURFGROW_CLI, " ", args, " 2>&1"});
-    CliRun r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf{};
-    while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.out += buf.data();
-    const int status = pclose(pipe);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
+    return test::run_surfgrow(args, env);
 }
 
 std::string q(const fs::path& p) {
-    return cat({"'", p.string(), "'"});
+    return test::quoted(p);
 }
 
 nlohmann::json read_json(const fs::path& file) {
