@@ -91,14 +91,12 @@ CsvTable run_sweep(const Sweep& sweep, const PointCloud& cloud, int repeat,
         }
         std::optional<std::pair<double, double>> normal;
         if (faces) normal = normal_error(cloud, result, *faces);
-        const MedianTimes t = median_times(times);
+
         std::vector<std::string> row = {sweep.values[i],
                                         is_mu ? std::to_string(config.min_pts) : sweep.fixed};
         for (std::string& f : result_fields(result.stats, normal ? &*normal : nullptr))
             row.push_back(std::move(f));
-        std::vector<std::string> timing = timing_fields(t.stages);
-        timing[0] = fixed(t.total, 6);
-        for (std::string& f : timing) row.push_back(std::move(f));
+        for (std::string& f : timing_fields(median_run(times))) row.push_back(std::move(f));
         table.rows.push_back(std::move(row));
     }
     if (progress) std::fprintf(stderr, "\r%60s\r", "");
@@ -279,7 +277,7 @@ void add_sweep_command(CLI::App& app) {
     cmd->add_option("--at-min-pts", a->grow.min_pts, "min-pts while mu is swept")
         ->capture_default_str();
     cmd->add_option("--repeat", a->repeat,
-                    "Runs per value; the CSV's times are the medians (results do not change)")
+                    "Runs per value; the CSV's times are those of the run with the median total")
         ->capture_default_str();
     cmd->add_flag("--require-plots", a->require_plots,
                   "Fail (exit 7, nothing written) when the plots cannot be drawn, instead of a "

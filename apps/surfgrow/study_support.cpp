@@ -279,22 +279,12 @@ std::vector<std::string> timing_fields(const StageTimes& t) {
             fixed(t.finish, 6)};
 }
 
-MedianTimes median_times(const std::vector<StageTimes>& runs) {
-    auto median = [&](auto get) {
-        std::vector<double> v;
-        for (const StageTimes& t : runs) v.push_back(get(t));
-        if (v.empty()) return 0.0;
-        std::sort(v.begin(), v.end());
-        const std::size_t n = v.size();
-        return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-    };
-    MedianTimes m;
-    m.stages.index = median([](const StageTimes& t) { return t.index; });
-    m.stages.grow = median([](const StageTimes& t) { return t.grow; });
-    m.stages.attach = median([](const StageTimes& t) { return t.attach; });
-    m.stages.finish = median([](const StageTimes& t) { return t.finish; });
-    m.total = median([](const StageTimes& t) { return t.total(); });
-    return m;
+StageTimes median_run(const std::vector<StageTimes>& runs) {
+    if (runs.empty()) return {};
+    std::vector<StageTimes> sorted = runs;
+    std::sort(sorted.begin(), sorted.end(),
+              [](const StageTimes& x, const StageTimes& y) { return x.total() < y.total(); });
+    return sorted[(sorted.size() - 1) / 2];
 }
 
 // ------------------------------------------------------------------------------------------------

@@ -62,13 +62,9 @@ struct CsvTable {
 /// Fields for timing_columns(): algorithm seconds, then index, grow, attach, finish.
 [[nodiscard]] std::vector<std::string> timing_fields(const StageTimes& t);
 
-/// The median of each stage over repeated runs (and of the totals: `total` is returned apart,
-/// since the median of the sum is not the sum of the medians).
-struct MedianTimes {
-    StageTimes stages;
-    double total = 0.0;
-};
-[[nodiscard]] MedianTimes median_times(const std::vector<StageTimes>& runs);
+/// The times of the run with the median total among repeated runs (of an even count, the
+/// faster of the middle two): its stages add up to its total, so a stacked plot stays true.
+[[nodiscard]] StageTimes median_run(const std::vector<StageTimes>& runs);
 
 /// Pictures drawn from CSV files by the plot script, as bytes to stage into an output.
 struct Plots {

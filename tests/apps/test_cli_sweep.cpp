@@ -286,8 +286,16 @@ TEST_F(CliSweep, SameInputSameResultsApartFromTimings) {
                       "--min-pts-steps 4 --seed 2 --threads 1 --repeat 2 -q -o ", q(again)}),
                  kNoPython);
     ASSERT_EQ(r.code, 0) << r.err;
-    for (const char* csv : {"mu.csv", "min_pts.csv"})
+    for (const char* csv : {"mu.csv", "min_pts.csv"}) {
         EXPECT_EQ(without_timings(again / csv), without_timings(sweep() / csv)) << csv;
+        // With --repeat the times are one run's, the median one: its stages add up.
+        const Csv t = read_csv(again / csv);
+        for (std::size_t i = 0; i < t.rows.size(); ++i) {
+            const double stages =
+                t.at(i, "index_s") + t.at(i, "grow_s") + t.at(i, "attach_s") + t.at(i, "finish_s");
+            EXPECT_NEAR(t.at(i, "seconds"), stages, 1e-5 + 0.01 * stages) << csv;
+        }
+    }
     // Another seed, other home points: the same columns, other surfaces.
     const CliRun other =
         surfgrow(cat({"sweep ", q(box()), " --mu 12mm:48mm --steps 4 --seed 3 -q -o ",
