@@ -129,7 +129,14 @@ def plot_sweep(plt, rows, param, path, title):
                label="95th percentile")
         d.set_ylabel("normal error (degrees)")
         d.set_title("(d) normal error against ground truth")
-        d.set_ylim(bottom=0)
+        errors = [v for v in column(rows, "normal_err_median_deg") + column(rows, "normal_err_p95_deg")
+                  if not math.isnan(v)]
+        if errors and min(errors) > 0 and max(errors) / min(errors) > 20:
+            # Errors from tenths of a degree to 90: a log scale keeps the small ones readable.
+            d.set_yscale("log")
+            d.yaxis.set_major_formatter(plt.FuncFormatter(lambda v, _: f"{v:g}"))
+        else:
+            d.set_ylim(bottom=0)
         d.legend(loc="upper right", fontsize=11)
     else:
         d.plot(x, column(rows, "reduction"), "o-", color="#9467bd")
