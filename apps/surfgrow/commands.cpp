@@ -13,6 +13,8 @@ void add_scan_command(CLI::App& app);
 void add_scan2cloud_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
+void add_sweep_command(CLI::App& app);
+void add_study_command(CLI::App& app);
 
 // The order here is the order of `surfgrow --help`: the main job first, then what is made from
 // its result, then the simulator and evaluation.
@@ -28,6 +30,8 @@ void add_all_commands(CLI::App& app) {
     add_scan2cloud_command(app);
     add_eval_command(app);
     add_demo_command(app);
+    add_sweep_command(app);
+    add_study_command(app);
 }
 
 }  // namespace surfgrow::cli

@@ -61,15 +61,19 @@ Truth read_truth(const fs::path& dir) {
     if (!t.cloud.has_labels() && !t.cloud.empty())
         throw Error(ErrorCode::kMalformedInput,
                     cat({t.cloud_file.string(), ": no ground-truth label per point"}));
-    if (fs::exists(dir / "scene.json")) {
-        t.faces = scanner::Scene(io::read_scene_file(dir / "scene.json")).faces();
-    } else if (fs::exists(dir / "truth-faces.json")) {
-        t.faces = io::read_truth_faces(dir / "truth-faces.json");
-    } else {
+    std::optional<std::vector<scanner::Face>> faces = read_truth_faces_in(dir);
+    if (!faces)
         throw Error(ErrorCode::kCannotOpen,
                     cat({dir.string(), ": neither scene.json nor truth-faces.json"}));
-    }
+    t.faces = std::move(*faces);
     return t;
+}
+
+std::optional<std::vector<scanner::Face>> read_truth_faces_in(const fs::path& dir) {
+    if (fs::exists(dir / "scene.json"))
+        return scanner::Scene(io::read_scene_file(dir / "scene.json")).faces();
+    if (fs::exists(dir / "truth-faces.json")) return io::read_truth_faces(dir / "truth-faces.json");
+    return std::nullopt;
 }
 
 eval::EvalReport evaluate_folder(const fs::path& result_dir, const Truth& truth,

@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,11 @@ struct Truth {
     PointCloud cloud;  ///< metres, truth face per point, scan per point
     std::vector<scanner::Face> faces;
 };
+
+/// The faces of a scan folder: DIR/scene.json, else DIR/truth-faces.json; nullopt when DIR has
+/// neither. Throws the readers' errors for a file that is there but broken.
+[[nodiscard]] std::optional<std::vector<scanner::Face>> read_truth_faces_in(
+    const std::filesystem::path& dir);
 
 /// Reads DIR/cloud.ply and the faces from DIR/scene.json (or DIR/truth-faces.json when there is
 /// no scene file). Throws Error(kCannotOpen) when they are missing, and the readers' errors.
