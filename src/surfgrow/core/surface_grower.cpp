@@ -278,7 +278,7 @@ struct Orientation {
 
 Orientation choose_orientation(const PointCloud& cloud, const GrowerConfig& cfg, const Aabb& box) {
     if (cloud.has_scan_index() && !cloud.scan_origins.empty())
-        return {OrientationSource::kScanOrigins, {}};
+        return {OrientationSource::kScanOrigins, Vec3d::Zero()};  // no single origin
     if (cfg.viewpoint) return {OrientationSource::kViewpoint, *cfg.viewpoint};
     if (cloud.viewpoint) return {OrientationSource::kViewpoint, *cloud.viewpoint};
     // A scan in its sensor's frame has the frame origin near its points (within a few extents);
@@ -291,7 +291,7 @@ Orientation choose_orientation(const PointCloud& cloud, const GrowerConfig& cfg,
             kFrameOriginReach * std::max(box.size().norm(), 1e-9))
             return {OrientationSource::kFrameOrigin, frame_origin};
     }
-    return {OrientationSource::kUp, {}};
+    return {OrientationSource::kUp, Vec3d::Zero()};
 }
 
 }  // namespace
