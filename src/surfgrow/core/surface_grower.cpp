@@ -115,6 +115,7 @@ void unregister_points(std::span<const Range> runs, std::span<std::int32_t> labe
 /// Per-thread scratch reused across slabs: no allocation per home point.
 struct Scratch {
     std::vector<std::uint32_t> order;
+    std::vector<std::uint32_t> cube_of;  // cube of each point of the slab, by position in slab
     std::vector<Range> table;
     std::vector<Range> runs;
 };
@@ -137,6 +138,10 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
     SplitMix64 rng(mix_seed(cfg.seed, slab_id));
     shuffle(std::span<std::uint32_t>(s.order), rng);
     index.neighbour_table(slab.cube_begin, slab.cube_end, s.table);
+    s.cube_of.resize(p_end - p_begin);
+    for (std::uint32_t c = slab.cube_begin; c < slab.cube_end; ++c)
+        std::fill(s.cube_of.begin() + (index.cube_begin(c) - p_begin),
+                  s.cube_of.begin() + (index.cube_end(c) - p_begin), c);
 
     const auto mu = static_cast<float>(cfg.mu);
     const double max_radius = cfg.max_radius();
@@ -146,7 +151,7 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
         if (ctx.labels[home] >= 0) continue;
         ++counters.tried;
         const Vec3f h = index.local_point(home);
-        const std::uint32_t cube = index.cube_of(home);
+        const std::uint32_t cube = s.cube_of[home - p_begin];
         std::span<const Range> runs(&s.table[9 * (cube - slab.cube_begin)], 9);
         double radius = cfg.mu;
         Moments m = gather_moments(index, runs, h, mu);
@@ -191,14 +196,24 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
     }
 }
 
-/// Runs f(slab_id, thread_id) over the slabs of one colour (0: even, 1: odd) in parallel.
+/// Runs f(slab_id, thread_id) over the slabs of one colour (0: even, 1: odd) in parallel, the
+/// largest first (fewer threads idle at the colour's end). Slabs of one colour are independent,
+/// so the order changes nothing in the result.
 template <class F>
-void for_each_slab_of_colour(std::size_t slab_count, int colour, int threads, F&& f) {
-    const auto count =
-        static_cast<std::int64_t>((slab_count + 1 - static_cast<std::size_t>(colour)) / 2);
+void for_each_slab_of_colour(const CubeIndex& index, std::span<const Slab> slabs, int colour,
+                             int threads, F&& f) {
+    std::vector<std::uint32_t> ids;
+    for (std::size_t s = static_cast<std::size_t>(colour); s < slabs.size(); s += 2)
+        ids.push_back(static_cast<std::uint32_t>(s));
+    auto points = [&](std::uint32_t s) {
+        return index.cube_begin(slabs[s].cube_end) - index.cube_begin(slabs[s].cube_begin);
+    };
+    std::stable_sort(ids.begin(), ids.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return points(a) > points(b); });
+    const auto count = static_cast<std::int64_t>(ids.size());
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
     for (std::int64_t k = 0; k < count; ++k) {
-        f(static_cast<std::size_t>(2 * k + colour), omp_get_thread_num());
+        f(std::size_t{ids[static_cast<std::size_t>(k)]}, omp_get_thread_num());
     }
 }
 
@@ -233,11 +248,17 @@ void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& sl
                     best_dist = d;
                 }
             };
+            // Neighbours come in runs of one surface: considering a surface again changes nothing.
+            std::int32_t last = -1;
             for (const Range& run : s.runs) {
                 for (std::uint32_t j = run.begin; j < run.end; ++j) {
-                    if (labels[j] < 0) continue;
+                    const std::int32_t l = labels[j];
+                    if (l < 0 || l == last) continue;
                     const float dx = X[j] - p.x(), dy = Y[j] - p.y(), dz = Z[j] - p.z();
-                    if (dx * dx + dy * dy + dz * dz <= r2) consider(labels[j]);
+                    if (dx * dx + dy * dy + dz * dz <= r2) {
+                        consider(l);
+                        last = l;
+                    }
                 }
             }
             if (!any_neighbour && far_radius > cfg.mu) {
@@ -278,7 +299,7 @@ struct Orientation {
 
 Orientation choose_orientation(const PointCloud& cloud, const GrowerConfig& cfg, const Aabb& box) {
     if (cloud.has_scan_index() && !cloud.scan_origins.empty())
-        return {OrientationSource::kScanOrigins, {}};
+        return {OrientationSource::kScanOrigins, Vec3d::Zero()};  // no single origin
     if (cfg.viewpoint) return {OrientationSource::kViewpoint, *cfg.viewpoint};
     if (cloud.viewpoint) return {OrientationSource::kViewpoint, *cloud.viewpoint};
     // A scan in its sensor's frame has the frame origin near its points (within a few extents);
@@ -291,7 +312,7 @@ Orientation choose_orientation(const PointCloud& cloud, const GrowerConfig& cfg,
             kFrameOriginReach * std::max(box.size().norm(), 1e-9))
             return {OrientationSource::kFrameOrigin, frame_origin};
     }
-    return {OrientationSource::kUp, {}};
+    return {OrientationSource::kUp, Vec3d::Zero()};
 }
 
 }  // namespace
@@ -353,7 +374,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     const GrowContext ctx{index, cfg, labels};
     std::atomic<std::size_t> done{0};
     for (int colour = 0; colour < 2; ++colour) {
-        for_each_slab_of_colour(slabs.size(), colour, threads, [&](std::size_t s, int t) {
+        for_each_slab_of_colour(index, slabs, colour, threads, [&](std::size_t s, int t) {
             grow_slab(ctx, slabs[s], s, scratch[static_cast<std::size_t>(t)], grown[s],
                       counters[s]);
             const std::size_t d = ++done;
@@ -450,38 +471,73 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     // --- Stage 4: member statistics, orientation, labels in input order, range bands.
     t0 = Clock::now();
     const auto orig = index.original_indices();
-    result.labels.assign(n_in, -1);
-    {
-        // Per surface, in the index's float frame: members, bounds, residual sum.
-        const std::vector<LocalPlane> planes = local_planes(index, result.surfaces, tolerance);
-        std::vector<Vec3f> lo(all.size(), Vec3f::Constant(std::numeric_limits<float>::max()));
-        std::vector<Vec3f> hi(all.size(), Vec3f::Constant(std::numeric_limits<float>::lowest()));
-        std::vector<double> residual_sum(all.size(), 0.0);
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::int32_t l = labels[i];
-            result.labels[orig[i]] = l;
-            if (l < 0) continue;
-            const auto k = static_cast<std::size_t>(l);
-            const Vec3f p = index.local_point(static_cast<std::uint32_t>(i));
-            ++result.surfaces[k].point_count;
-            lo[k] = lo[k].cwiseMin(p);
-            hi[k] = hi[k].cwiseMax(p);
-            residual_sum[k] += static_cast<double>(planes[k].distance(p));
-        }
-        for (std::size_t k = 0; k < all.size(); ++k) {
-            Surface& s = result.surfaces[k];
-            st.registered += s.point_count;
-            if (s.point_count == 0) continue;
-            s.mean_residual = residual_sum[k] / s.point_count;
-            s.bounds.add(index.origin() + lo[k].cast<double>());
-            s.bounds.add(index.origin() + hi[k].cast<double>());
-        }
-    }
-    st.noise_points = st.valid_points - st.registered;
-
     const Orientation orient = choose_orientation(cloud, cfg, index.bounds());
     st.orientation = orient.source;
     const bool per_scan = orient.source == OrientationSource::kScanOrigins;
+    st.range_known = orient.source != OrientationSource::kUp;
+    st.range_origin = orient.origin;
+    result.labels.assign(n_in, -1);
+    // Two independent passes over the points, side by side: per-surface statistics (in point
+    // order, so the residual sums are the same for any thread count), and the labels in input
+    // order with the range bands.
+    const std::vector<LocalPlane> planes = local_planes(index, result.surfaces, tolerance);
+    std::vector<Vec3f> lo(all.size(), Vec3f::Constant(std::numeric_limits<float>::max()));
+    std::vector<Vec3f> hi(all.size(), Vec3f::Constant(std::numeric_limits<float>::lowest()));
+    std::vector<double> residual_sum(all.size(), 0.0);
+    std::vector<RangeBand> bands;
+#pragma omp parallel sections num_threads(std::min(threads, 2))
+    {
+#pragma omp section
+        {
+            // Per surface, in the index's float frame: members, bounds, residual sum.
+            for (std::size_t i = 0; i < n; ++i) {
+                const std::int32_t l = labels[i];
+                if (l < 0) continue;
+                const auto k = static_cast<std::size_t>(l);
+                const Vec3f p = index.local_point(static_cast<std::uint32_t>(i));
+                ++result.surfaces[k].point_count;
+                lo[k] = lo[k].cwiseMin(p);
+                hi[k] = hi[k].cwiseMax(p);
+                residual_sum[k] += static_cast<double>(planes[k].distance(p));
+            }
+        }
+#pragma omp section
+        {
+            for (std::size_t i = 0; i < n; ++i) result.labels[orig[i]] = labels[i];
+            if (st.range_known) {
+                std::vector<Vec3f> origins;  // local frame: one, or one per scan
+                if (per_scan)
+                    for (const Vec3d& o : cloud.scan_origins) origins.push_back(index.to_local(o));
+                else
+                    origins.push_back(index.to_local(orient.origin));
+                const auto inv_band = static_cast<float>(1.0 / cfg.range_band);
+                for (std::size_t i = 0; i < n; ++i) {
+                    std::uint32_t o = 0;
+                    if (per_scan) {
+                        o = cloud.scan_index[orig[i]];
+                        if (o >= origins.size()) o = 0;
+                    }
+                    const float r =
+                        (index.local_point(static_cast<std::uint32_t>(i)) - origins[o]).norm();
+                    const auto band =
+                        static_cast<std::size_t>(std::min(r * inv_band, float(kMaxRangeBands - 1)));
+                    if (band >= bands.size()) bands.resize(band + 1);
+                    ++bands[band].points;
+                    bands[band].registered += labels[i] >= 0 ? 1 : 0;
+                }
+            }
+        }
+    }
+    for (std::size_t k = 0; k < all.size(); ++k) {
+        Surface& s = result.surfaces[k];
+        st.registered += s.point_count;
+        if (s.point_count == 0) continue;
+        s.mean_residual = residual_sum[k] / s.point_count;
+        s.bounds.add(index.origin() + lo[k].cast<double>());
+        s.bounds.add(index.origin() + hi[k].cast<double>());
+    }
+    st.noise_points = st.valid_points - st.registered;
+
     auto origin_of = [&](std::uint32_t sorted) -> Vec3d {
         if (per_scan) {
             const std::uint32_t scan = cloud.scan_index[orig[sorted]];
@@ -496,29 +552,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
                                   : Vec3d(origin_of(all[k].home) - s.home);
         if (s.normal.dot(towards) < 0) s.normal = -s.normal;
     }
-    st.range_known = orient.source != OrientationSource::kUp;
-    st.range_origin = orient.origin;
     if (st.range_known) {
-        std::vector<Vec3f> origins;  // local frame: one, or one per scan
-        if (per_scan)
-            for (const Vec3d& o : cloud.scan_origins) origins.push_back(index.to_local(o));
-        else
-            origins.push_back(index.to_local(orient.origin));
-        const auto inv_band = static_cast<float>(1.0 / cfg.range_band);
-        std::vector<RangeBand> bands;
-        for (std::size_t i = 0; i < n; ++i) {
-            std::uint32_t o = 0;
-            if (per_scan) {
-                o = cloud.scan_index[orig[i]];
-                if (o >= origins.size()) o = 0;
-            }
-            const float r = (index.local_point(static_cast<std::uint32_t>(i)) - origins[o]).norm();
-            const auto band =
-                static_cast<std::size_t>(std::min(r * inv_band, float(kMaxRangeBands - 1)));
-            if (band >= bands.size()) bands.resize(band + 1);
-            ++bands[band].points;
-            bands[band].registered += labels[i] >= 0 ? 1 : 0;
-        }
         for (std::size_t b = 0; b < bands.size(); ++b) {
             bands[b].from = double(b) * cfg.range_band;
             bands[b].to = double(b + 1) * cfg.range_band;
