@@ -2,9 +2,9 @@
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
+#include "simulated_scans.hpp"
 #include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/surface_grower.hpp"
-#include "simulated_scans.hpp"
 
 namespace surfgrow::bench {
 namespace {
