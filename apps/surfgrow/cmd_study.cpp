@@ -19,7 +19,6 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/core/text.hpp"
-#include "surfgrow/io/atomic_output.hpp"
 #include "surfgrow/scanner/fuse.hpp"
 
 namespace surfgrow::cli {
@@ -174,18 +173,7 @@ void run(const StudyArgs& a) {
         {"tests", sizes.size()},
         {"files", files},
     };
-    io::OutputTransaction tx(out);
-    for (const auto& [name, bytes] : csv_files) tx.add(name, [&](std::ostream& o) { o << bytes; });
-    for (const auto& [name, bytes] : plots.files)
-        tx.add(name, [&](std::ostream& o) { o << bytes; });
-    tx.add("study.json", [&](std::ostream& o) { o << record.dump(2) << "\n"; });
-    tx.commit();
-
-    if (!plots.drawn)
-        std::cerr << "surfgrow: warning: plots skipped: " << plots.why_not
-                  << "\n         study.csv is written; install Debian's python3-matplotlib, "
-                     "or pass --require-plots to make this an error"
-                  << std::endl;
+    publish_study(out, csv_files, plots, "study.json", record, "study.csv is");
     if (!a.quiet) {
         char buf[64];
         std::snprintf(buf, sizeof buf, "%.1f s", seconds);

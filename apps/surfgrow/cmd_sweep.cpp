@@ -17,7 +17,6 @@
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/eval/evaluation.hpp"
-#include "surfgrow/io/atomic_output.hpp"
 #include "surfgrow/io/cloud_io.hpp"
 
 namespace surfgrow::cli {
@@ -210,18 +209,7 @@ void run(const SweepArgs& a) {
     for (const auto& [name, bytes] : plots.files) files.push_back(name);
     record["files"] = files;
 
-    io::OutputTransaction tx(out);
-    for (const auto& [name, bytes] : csv_files) tx.add(name, [&](std::ostream& o) { o << bytes; });
-    for (const auto& [name, bytes] : plots.files)
-        tx.add(name, [&](std::ostream& o) { o << bytes; });
-    tx.add("sweep.json", [&](std::ostream& o) { o << record.dump(2) << "\n"; });
-    tx.commit();
-
-    if (!plots.drawn)
-        std::cerr << "surfgrow: warning: plots skipped: " << plots.why_not
-                  << "\n         the CSV files are written; install Debian's python3-matplotlib, "
-                     "or pass --require-plots to make this an error"
-                  << std::endl;
+    publish_study(out, csv_files, plots, "sweep.json", record, "the CSV files are");
     if (!a.quiet) {
         std::string line = cat({"sweep: ", std::to_string(finite), " points"});
         for (const Sweep& s : sweeps) {

@@ -15,11 +15,13 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "cli_common.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/io/atomic_output.hpp"
 
 extern char** environ;
 
@@ -434,6 +436,24 @@ Plots draw_plots(std::string_view kind,
     }
     plots.drawn = true;
     return plots;
+}
+
+void publish_study(const std::filesystem::path& out,
+                   const std::vector<std::pair<std::string, std::string>>& csv_files,
+                   const Plots& plots, const std::string& record_name, const nlohmann::json& record,
+                   std::string_view written) {
+    io::OutputTransaction tx(out);
+    for (const auto& [name, bytes] : csv_files) tx.add(name, [&](std::ostream& o) { o << bytes; });
+    for (const auto& [name, bytes] : plots.files)
+        tx.add(name, [&](std::ostream& o) { o << bytes; });
+    tx.add(record_name, [&](std::ostream& o) { o << record.dump(2) << "\n"; });
+    tx.commit();
+    if (!plots.drawn)
+        std::cerr << "surfgrow: warning: plots skipped: " << plots.why_not << "\n         "
+                  << written
+                  << " written; install Debian's python3-matplotlib, or pass --require-plots to "
+                     "make this an error"
+                  << std::endl;
 }
 
 }  // namespace surfgrow::cli

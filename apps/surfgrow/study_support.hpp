@@ -2,6 +2,9 @@
 // medians, and the plots drawn from the tables by scripts/plots/surfgrow_plots.py.
 #pragma once
 
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -83,5 +86,13 @@ struct Plots {
 [[nodiscard]] Plots draw_plots(std::string_view kind,
                                const std::vector<std::pair<std::string, std::string>>& csv_files,
                                const std::vector<std::string>& png_names, const std::string& title);
+
+/// Publishes a study's outputs as one transaction into `out`: the CSV files, the plots and
+/// `record_name` (the run record as JSON). When the plots were not drawn, warns on stderr that
+/// `written` (e.g. "study.csv is") was written without them.
+void publish_study(const std::filesystem::path& out,
+                   const std::vector<std::pair<std::string, std::string>>& csv_files,
+                   const Plots& plots, const std::string& record_name, const nlohmann::json& record,
+                   std::string_view written);
 
 }  // namespace surfgrow::cli
