@@ -146,7 +146,8 @@ TEST(BoundPlanes, ParallelPlatesAStepApartStaySeparate) {
     const Grown g = grow_rects({low, high}, 0.0005, [](const Vec3d& p) {
         return p.z() < 0.51 && std::abs(p.x() - 0.1) < 0.05 && std::abs(p.y()) < 0.05;
     });
-    const auto faces = major(planes_of(g));
+    const BoundPlanes planes = planes_of(g);  // alive while `faces` points into it
+    const auto faces = major(planes);
     ASSERT_EQ(faces.size(), 2u);
     EXPECT_NEAR(faces[0]->centroid.z(), 0.5, 1e-3);
     EXPECT_NEAR(faces[1]->centroid.z(), 0.52, 1e-3);
