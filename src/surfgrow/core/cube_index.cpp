@@ -133,8 +133,12 @@ CubeIndex::CubeIndex(std::span<const Vec3f> points, double cube_size,
         y_[i] = local.y();
         z_[i] = local.z();
     }
+    std::size_t cubes = 1;
+    for (std::size_t i = 1; i < n; ++i) cubes += keys[i] != keys[i - 1] ? 1 : 0;
     cube_keys_.clear();
     cube_start_.clear();
+    reserve_bulk(cube_keys_, cubes);
+    reserve_bulk(cube_start_, cubes + 1);
     for (std::size_t i = 0; i < n; ++i) {
         if (i == 0 || keys[i] != keys[i - 1]) {
             cube_keys_.push_back(keys[i]);
@@ -142,8 +146,6 @@ CubeIndex::CubeIndex(std::span<const Vec3f> points, double cube_size,
         }
     }
     cube_start_.push_back(static_cast<std::uint32_t>(n));
-    cube_keys_.shrink_to_fit();
-    cube_start_.shrink_to_fit();
     original_ = std::move(index);
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "surfgrow/core/bulk_allocator.hpp"
 #include "surfgrow/core/cube_index.hpp"
 
 namespace surfgrow {
@@ -30,7 +31,9 @@ struct Candidate {
 }  // namespace
 
 std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const PoolingConfig& cfg) {
-    std::vector<Vec3d> out(patches.size());
+    std::vector<Vec3d> out;
+    reserve_bulk(out, patches.size());
+    out.resize(patches.size());
     if (patches.empty()) return out;
     std::vector<Vec3f> homes(patches.size());
     for (std::size_t k = 0; k < patches.size(); ++k) homes[k] = patches[k].home.cast<float>();
@@ -41,7 +44,9 @@ std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const Po
     index.neighbour_table(0, index.cube_count(), table);
     // Moments about the index origin: at metre scale in double the sums lose ~1e-14 m^2, far
     // below a patch's spread, and pooling needs no per-pair shift.
-    std::vector<Candidate> cand(index.size());
+    std::vector<Candidate> cand;
+    reserve_bulk(cand, index.size());
+    cand.resize(index.size());
     for (std::size_t s = 0; s < index.size(); ++s) {
         const PoolablePatch& p = patches[orig[s]];
         cand[s] = {p.normal, p.centroid - index.origin(), std::sqrt(std::max(p.lambda_min, 0.0)),

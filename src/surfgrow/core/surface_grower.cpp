@@ -12,6 +12,7 @@
 #include <string>
 #include <string_view>
 
+#include "surfgrow/core/bulk_allocator.hpp"
 #include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/neighbourhood.hpp"
@@ -367,7 +368,9 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     const int reach = static_cast<int>(std::ceil(cfg.max_radius() / index.cube_size()));
     const std::size_t target = std::clamp<std::size_t>(n / 256, 4096, 65536);
     const std::vector<Slab> slabs = partition_slabs(index, 2 * reach, target);
-    std::vector<std::int32_t> labels(n, -1);
+    std::vector<std::int32_t> labels;
+    reserve_bulk(labels, n);
+    labels.assign(n, -1);
     std::vector<std::vector<GrownSurface>> grown(slabs.size());
     std::vector<SlabCounters> counters(slabs.size());
     std::vector<Scratch> scratch(static_cast<std::size_t>(threads));
@@ -382,32 +385,42 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         });
     }
     // Surface ids follow the home points' sorted order: slab order, then home order within a slab.
-    std::vector<GrownSurface> all;
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> order;  // (home, position): cheap to sort
+    // Each slab's surfaces go straight to their final place, slabs in parallel.
+    std::vector<std::size_t> first(slabs.size() + 1, 0);
     for (std::size_t s = 0; s < slabs.size(); ++s) {
-        order.resize(grown[s].size());
-        for (std::size_t k = 0; k < grown[s].size(); ++k)
-            order[k] = {grown[s][k].home, static_cast<std::uint32_t>(k)};
-        std::sort(order.begin(), order.end());
-        for (const auto& [home, k] : order) all.push_back(grown[s][k]);
-        grown[s] = {};
+        first[s + 1] = first[s] + grown[s].size();
         st.homes_tried += counters[s].tried;
         st.rejected_sparse += counters[s].sparse;
         st.rejected_nonplanar += counters[s].nonplanar;
         st.rejected_covered += counters[s].covered;
         st.adapted_surfaces += counters[s].adapted;
     }
-    {
-        std::vector<std::int32_t> sid_of_home(n, -1);
-        for (std::size_t k = 0; k < all.size(); ++k)
-            sid_of_home[all[k].home] = static_cast<std::int32_t>(k);
-#pragma omp parallel for num_threads(threads) schedule(static)
-        for (std::size_t i = 0; i < n; ++i) {
-            if (labels[i] >= 0) labels[i] = sid_of_home[static_cast<std::size_t>(labels[i])];
+    std::vector<GrownSurface> all;
+    reserve_bulk(all, first.back());
+    all.resize(first.back());
+    BulkVector<std::int32_t> sid_of_home(n);  // read only at homes of kept surfaces
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 4)
+    for (std::size_t s = 0; s < slabs.size(); ++s) {
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> order(grown[s].size());  // (home, k)
+        for (std::size_t k = 0; k < grown[s].size(); ++k)
+            order[k] = {grown[s][k].home, static_cast<std::uint32_t>(k)};
+        std::sort(order.begin(), order.end());
+        for (std::size_t r = 0; r < order.size(); ++r) {
+            all[first[s] + r] = grown[s][order[r].second];
+            sid_of_home[order[r].first] = static_cast<std::int32_t>(first[s] + r);
         }
+        grown[s] = {};
     }
+    // Every label left after growing is the home of a kept surface (undone homes reset theirs).
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+        if (labels[i] >= 0) labels[i] = sid_of_home[static_cast<std::size_t>(labels[i])];
+    }
+    sid_of_home = {};
+    reserve_bulk(result.surfaces, all.size());
     result.surfaces.resize(all.size());
     std::vector<double> tolerance(all.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t k = 0; k < all.size(); ++k) {
         const GrownSurface& g = all[k];
         Surface& s = result.surfaces[k];
@@ -421,7 +434,10 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     }
     st.surfaces = all.size();
     if (cfg.pool_angle_deg > 0 && !all.empty()) {
-        std::vector<PoolablePatch> patches(all.size());
+        std::vector<PoolablePatch> patches;
+        reserve_bulk(patches, all.size());
+        patches.resize(all.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
         for (std::size_t k = 0; k < all.size(); ++k) {
             const Surface& s = result.surfaces[k];
             patches[k] = {s.home, s.centroid, s.normal, s.eigenvalues[0], all[k].moments};
@@ -476,6 +492,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     const bool per_scan = orient.source == OrientationSource::kScanOrigins;
     st.range_known = orient.source != OrientationSource::kUp;
     st.range_origin = orient.origin;
+    reserve_bulk(result.labels, n_in);
     result.labels.assign(n_in, -1);
     // Two independent passes over the points, side by side: per-surface statistics (in point
     // order, so the residual sums are the same for any thread count), and the labels in input
