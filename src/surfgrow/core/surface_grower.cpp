@@ -115,6 +115,7 @@ void unregister_points(std::span<const Range> runs, std::span<std::int32_t> labe
 
 /// Per-thread scratch reused across slabs: no allocation per home point.
 struct Scratch {
+    std::vector<GrownSurface> grown;  // every slab this thread grew, one after another
     std::vector<std::uint32_t> order;
     std::vector<std::uint32_t> cube_of;  // cube of each point of the slab, by position in slab
     std::vector<Range> table;
@@ -225,11 +226,8 @@ void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& sl
                  std::span<const std::int32_t> labels, const std::vector<Surface>& surfaces,
                  std::span<const double> tolerance, Scratch& s,
                  std::vector<std::pair<std::uint32_t, std::int32_t>>& attach) {
-    const auto r2 = static_cast<float>(cfg.mu * cfg.mu);
+    const auto mu = static_cast<float>(cfg.mu);
     const double far_radius = cfg.max_radius();
-    const float* X = index.xs();
-    const float* Y = index.ys();
-    const float* Z = index.zs();
     for (std::uint32_t c = slab.cube_begin; c < slab.cube_end; ++c) {
         s.runs.clear();
         for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
@@ -251,17 +249,12 @@ void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& sl
             };
             // Neighbours come in runs of one surface: considering a surface again changes nothing.
             std::int32_t last = -1;
-            for (const Range& run : s.runs) {
-                for (std::uint32_t j = run.begin; j < run.end; ++j) {
-                    const std::int32_t l = labels[j];
-                    if (l < 0 || l == last) continue;
-                    const float dx = X[j] - p.x(), dy = Y[j] - p.y(), dz = Z[j] - p.z();
-                    if (dx * dx + dy * dy + dz * dz <= r2) {
-                        consider(l);
-                        last = l;
-                    }
-                }
-            }
+            for_each_in_runs_within(index, s.runs, p, mu, [&](std::uint32_t j) {
+                const std::int32_t l = labels[j];
+                if (l < 0 || l == last) return;
+                consider(l);
+                last = l;
+            });
             if (!any_neighbour && far_radius > cfg.mu) {
                 index.for_each_within(pw, far_radius, [&](std::uint32_t j) {
                     if (labels[j] >= 0) consider(labels[j]);
@@ -371,15 +364,23 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     std::vector<std::int32_t> labels;
     reserve_bulk(labels, n);
     labels.assign(n, -1);
-    std::vector<std::vector<GrownSurface>> grown(slabs.size());
+    // Where each slab's surfaces lie: thread t's scratch.grown[begin, end).
+    struct GrownSpan {
+        std::size_t thread = 0, begin = 0, end = 0;
+    };
+    std::vector<GrownSpan> grown(slabs.size());
     std::vector<SlabCounters> counters(slabs.size());
     std::vector<Scratch> scratch(static_cast<std::size_t>(threads));
+    // Address space only: a buffer is touched (in huge pages) as far as its thread fills it.
+    for (Scratch& sc : scratch) reserve_bulk(sc.grown, n / 8 + 64);
     const GrowContext ctx{index, cfg, labels};
     std::atomic<std::size_t> done{0};
     for (int colour = 0; colour < 2; ++colour) {
         for_each_slab_of_colour(index, slabs, colour, threads, [&](std::size_t s, int t) {
-            grow_slab(ctx, slabs[s], s, scratch[static_cast<std::size_t>(t)], grown[s],
-                      counters[s]);
+            Scratch& sc = scratch[static_cast<std::size_t>(t)];
+            const std::size_t begin = sc.grown.size();
+            grow_slab(ctx, slabs[s], s, sc, sc.grown, counters[s]);
+            grown[s] = {static_cast<std::size_t>(t), begin, sc.grown.size()};
             const std::size_t d = ++done;
             if (t == 0) report("grow", double(d) / double(slabs.size()));
         });
@@ -388,7 +389,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     // Each slab's surfaces go straight to their final place, slabs in parallel.
     std::vector<std::size_t> first(slabs.size() + 1, 0);
     for (std::size_t s = 0; s < slabs.size(); ++s) {
-        first[s + 1] = first[s] + grown[s].size();
+        first[s + 1] = first[s] + (grown[s].end - grown[s].begin);
         st.homes_tried += counters[s].tried;
         st.rejected_sparse += counters[s].sparse;
         st.rejected_nonplanar += counters[s].nonplanar;
@@ -401,17 +402,19 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     BulkVector<std::int32_t> sid_of_home(n);  // read only at homes of kept surfaces
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 4)
     for (std::size_t s = 0; s < slabs.size(); ++s) {
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> order(grown[s].size());  // (home, k)
-        for (std::size_t k = 0; k < grown[s].size(); ++k)
-            order[k] = {grown[s][k].home, static_cast<std::uint32_t>(k)};
+        const std::span<const GrownSurface> mine(
+            scratch[grown[s].thread].grown.data() + grown[s].begin, grown[s].end - grown[s].begin);
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> order(mine.size());  // (home, k)
+        for (std::size_t k = 0; k < mine.size(); ++k)
+            order[k] = {mine[k].home, static_cast<std::uint32_t>(k)};
         std::sort(order.begin(), order.end());
         for (std::size_t r = 0; r < order.size(); ++r) {
-            all[first[s] + r] = grown[s][order[r].second];
+            all[first[s] + r] = mine[order[r].second];
             sid_of_home[order[r].first] = static_cast<std::int32_t>(first[s] + r);
         }
-        grown[s] = {};
     }
-    // Every label left after growing is the home of a kept surface (undone homes reset theirs).
+    for (Scratch& sc : scratch) sc.grown = {};
+        // Every label left after growing is the home of a kept surface (undone homes reset theirs).
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
         if (labels[i] >= 0) labels[i] = sid_of_home[static_cast<std::size_t>(labels[i])];
