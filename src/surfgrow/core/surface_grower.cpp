@@ -420,12 +420,15 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         if (labels[i] >= 0) labels[i] = sid_of_home[static_cast<std::size_t>(labels[i])];
     }
     sid_of_home = {};
+    const std::size_t surface_count = all.size();
+    std::vector<std::uint32_t> home_of(surface_count);  // sorted index of each surface's home
     reserve_bulk(result.surfaces, all.size());
     result.surfaces.resize(all.size());
     std::vector<double> tolerance(all.size());
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t k = 0; k < all.size(); ++k) {
         const GrownSurface& g = all[k];
+        home_of[k] = g.home;
         Surface& s = result.surfaces[k];
         s.home = index.world_point(g.home);
         s.centroid = s.home + g.fit.centroid;
@@ -435,16 +438,17 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         s.neighbours = g.neighbours;
         tolerance[k] = cfg.tolerance() * double(g.radius) / cfg.mu;
     }
-    st.surfaces = all.size();
-    if (cfg.pool_angle_deg > 0 && !all.empty()) {
+    st.surfaces = surface_count;
+    if (cfg.pool_angle_deg > 0 && surface_count > 0) {
         std::vector<PoolablePatch> patches;
-        reserve_bulk(patches, all.size());
-        patches.resize(all.size());
+        reserve_bulk(patches, surface_count);
+        patches.resize(surface_count);
 #pragma omp parallel for num_threads(threads) schedule(static)
-        for (std::size_t k = 0; k < all.size(); ++k) {
+        for (std::size_t k = 0; k < surface_count; ++k) {
             const Surface& s = result.surfaces[k];
             patches[k] = {s.home, s.centroid, s.normal, s.eigenvalues[0], all[k].moments};
         }
+        all = {};  // its moments are in the patches now: free them before pooling's own copy
         PoolingConfig pc;
         pc.radius = cfg.pool_radius > 0 ? cfg.pool_radius : 2 * cfg.mu;
         pc.max_angle = cfg.pool_angle_deg * M_PI / 180.0;
@@ -452,7 +456,8 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         pc.max_offset = cfg.mu / 2;
         pc.threads = threads;
         const std::vector<Vec3d> pooled = pool_normals(patches, pc);
-        for (std::size_t k = 0; k < all.size(); ++k) result.surfaces[k].normal = pooled[k];
+        patches = {};
+        for (std::size_t k = 0; k < surface_count; ++k) result.surfaces[k].normal = pooled[k];
         // A reported plane must hold its members: release any the refined plane no longer fits
         // (rare: points at the tolerance's edge); the leftover pass may re-attach them.
         std::uint64_t released = 0;
@@ -469,12 +474,13 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         }
         st.released_by_refinement = released;
     }
+    all = {};
     st.seconds.grow = seconds_since(t0);
     for (const std::int32_t l : labels) st.registered_grown += l >= 0 ? 1 : 0;
 
     // --- Stage 3: attach leftovers to the best-fitting neighbouring surface.
     t0 = Clock::now();
-    if (cfg.attach_leftovers && !all.empty()) {
+    if (cfg.attach_leftovers && surface_count > 0) {
         std::vector<std::vector<std::pair<std::uint32_t, std::int32_t>>> attach(slabs.size());
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
         for (std::size_t s = 0; s < slabs.size(); ++s) {
@@ -501,9 +507,9 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     // order, so the residual sums are the same for any thread count), and the labels in input
     // order with the range bands.
     const std::vector<LocalPlane> planes = local_planes(index, result.surfaces, tolerance);
-    std::vector<Vec3f> lo(all.size(), Vec3f::Constant(std::numeric_limits<float>::max()));
-    std::vector<Vec3f> hi(all.size(), Vec3f::Constant(std::numeric_limits<float>::lowest()));
-    std::vector<double> residual_sum(all.size(), 0.0);
+    std::vector<Vec3f> lo(surface_count, Vec3f::Constant(std::numeric_limits<float>::max()));
+    std::vector<Vec3f> hi(surface_count, Vec3f::Constant(std::numeric_limits<float>::lowest()));
+    std::vector<double> residual_sum(surface_count, 0.0);
     std::vector<RangeBand> bands;
 #pragma omp parallel sections num_threads(std::min(threads, 2))
     {
@@ -548,7 +554,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
             }
         }
     }
-    for (std::size_t k = 0; k < all.size(); ++k) {
+    for (std::size_t k = 0; k < surface_count; ++k) {
         Surface& s = result.surfaces[k];
         st.registered += s.point_count;
         if (s.point_count == 0) continue;
@@ -565,11 +571,11 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         }
         return orient.origin;
     };
-    for (std::size_t k = 0; k < all.size(); ++k) {
+    for (std::size_t k = 0; k < surface_count; ++k) {
         Surface& s = result.surfaces[k];
         const Vec3d towards = orient.source == OrientationSource::kUp
                                   ? Vec3d::UnitZ()
-                                  : Vec3d(origin_of(all[k].home) - s.home);
+                                  : Vec3d(origin_of(home_of[k]) - s.home);
         if (s.normal.dot(towards) < 0) s.normal = -s.normal;
     }
     if (st.range_known) {
