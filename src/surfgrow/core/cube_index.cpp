@@ -133,19 +133,37 @@ CubeIndex::CubeIndex(std::span<const Vec3f> points, double cube_size,
         y_[i] = local.y();
         z_[i] = local.z();
     }
-    std::size_t cubes = 1;
-    for (std::size_t i = 1; i < n; ++i) cubes += keys[i] != keys[i - 1] ? 1 : 0;
+    // Cube boundaries: each chunk counts the cubes starting in it, then writes them at its offset.
+    const int sweep_team = n < (1u << 16) ? 1 : threads;
+    const auto sweep_chunks = static_cast<std::size_t>(sweep_team);
+    std::vector<std::size_t> cubes_before(sweep_chunks + 1, 0);
+    auto starts_cube = [&](std::size_t i) { return i == 0 || keys[i] != keys[i - 1]; };
+#pragma omp parallel for num_threads(sweep_team) schedule(static, 1)
+    for (std::size_t c = 0; c < sweep_chunks; ++c) {
+        std::size_t k = 0;
+        for (std::size_t i = n * c / sweep_chunks; i < n * (c + 1) / sweep_chunks; ++i)
+            k += starts_cube(i) ? 1 : 0;
+        cubes_before[c + 1] = k;
+    }
+    for (std::size_t c = 0; c < sweep_chunks; ++c) cubes_before[c + 1] += cubes_before[c];
+    const std::size_t cubes = cubes_before[sweep_chunks];
     cube_keys_.clear();
     cube_start_.clear();
     reserve_bulk(cube_keys_, cubes);
     reserve_bulk(cube_start_, cubes + 1);
-    for (std::size_t i = 0; i < n; ++i) {
-        if (i == 0 || keys[i] != keys[i - 1]) {
-            cube_keys_.push_back(keys[i]);
-            cube_start_.push_back(static_cast<std::uint32_t>(i));
+    cube_keys_.resize(cubes);
+    cube_start_.resize(cubes + 1);
+#pragma omp parallel for num_threads(sweep_team) schedule(static, 1)
+    for (std::size_t c = 0; c < sweep_chunks; ++c) {
+        std::size_t k = cubes_before[c];
+        for (std::size_t i = n * c / sweep_chunks; i < n * (c + 1) / sweep_chunks; ++i) {
+            if (!starts_cube(i)) continue;
+            cube_keys_[k] = keys[i];
+            cube_start_[k] = static_cast<std::uint32_t>(i);
+            ++k;
         }
     }
-    cube_start_.push_back(static_cast<std::uint32_t>(n));
+    cube_start_[cubes] = static_cast<std::uint32_t>(n);
     original_ = std::move(index);
 }
 

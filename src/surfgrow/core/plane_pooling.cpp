@@ -47,6 +47,7 @@ std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const Po
     std::vector<Candidate> cand;
     reserve_bulk(cand, index.size());
     cand.resize(index.size());
+#pragma omp parallel for num_threads(std::max(1, cfg.threads)) schedule(static)
     for (std::size_t s = 0; s < index.size(); ++s) {
         const PoolablePatch& p = patches[orig[s]];
         cand[s] = {p.normal, p.centroid - index.origin(), std::sqrt(std::max(p.lambda_min, 0.0)),
