@@ -18,9 +18,10 @@ namespace surfgrow {
 ///
 /// - Elements are default-initialised, i.e. left as they are: vectors that are overwritten anyway
 ///   skip the memset that resize() would do.
-/// - Blocks of 2 MiB or more are 2 MiB-aligned and marked MADV_HUGEPAGE (Linux), so first touch
-///   faults in 2 MiB pages instead of 4 KiB ones. In a virtual machine a page fault costs
-///   microseconds; for a million points this saves tens of milliseconds.
+/// - Blocks of 2 MiB or more are mapped on their own, 2 MiB-aligned and marked MADV_HUGEPAGE
+///   (Linux), so first touch faults in 2 MiB pages instead of 4 KiB ones (in a virtual machine a
+///   page fault costs microseconds; for a million points this saves tens of milliseconds), and
+///   freeing one returns its memory to the OS at once.
 template <class T>
 struct BulkAllocator {
     using value_type = T;
@@ -31,23 +32,23 @@ struct BulkAllocator {
     BulkAllocator(const BulkAllocator<U>&) noexcept {}
 
     T* allocate(std::size_t n) {
+        if (n > (std::size_t(-1) - 2 * kHugePage) / sizeof(T)) throw std::bad_alloc();
         const std::size_t bytes = n * sizeof(T);
-        if (n > std::size_t(-1) / sizeof(T)) throw std::bad_alloc();
         void* p = nullptr;
         if (bytes >= kHugePage) {
-            const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
-            p = std::aligned_alloc(kHugePage, rounded);
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-            if (p) ::madvise(p, rounded, MADV_HUGEPAGE);  // a hint: ignored where unsupported
-#endif
+            p = map_huge(rounded(bytes));
         } else {
             p = std::malloc(bytes ? bytes : 1);
         }
         if (!p) throw std::bad_alloc();
         return static_cast<T*>(p);
     }
-    void deallocate(T* p, std::size_t) noexcept {
-        std::free(p);
+    void deallocate(T* p, std::size_t n) noexcept {
+        const std::size_t bytes = n * sizeof(T);
+        if (bytes >= kHugePage)
+            unmap_huge(p, rounded(bytes));
+        else
+            std::free(p);
     }
 
     template <class U>
@@ -62,6 +63,40 @@ struct BulkAllocator {
     template <class U>
     bool operator==(const BulkAllocator<U>&) const noexcept {
         return true;
+    }
+
+  private:
+    static std::size_t rounded(std::size_t bytes) {
+        return (bytes + kHugePage - 1) / kHugePage * kHugePage;
+    }
+    // Big blocks are mapped directly rather than taken from malloc's heap, so that freeing one
+    // gives its memory back to the OS at once: malloc keeps freed blocks of a size it has seen
+    // freed before, and the peak resident memory of a run would count them.
+    static void* map_huge(std::size_t size) {
+#if defined(__linux__)
+        void* raw = ::mmap(nullptr, size + kHugePage, PROT_READ | PROT_WRITE,
+                           MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        if (raw == MAP_FAILED) return nullptr;
+        const auto a = reinterpret_cast<std::uintptr_t>(raw);
+        const std::uintptr_t aligned = (a + kHugePage - 1) / kHugePage * kHugePage;
+        const std::size_t head = aligned - a;
+        if (head > 0) ::munmap(raw, head);
+        if (kHugePage - head > 0)
+            ::munmap(reinterpret_cast<void*>(aligned + size), kHugePage - head);
+#if defined(MADV_HUGEPAGE)
+        ::madvise(reinterpret_cast<void*>(aligned), size, MADV_HUGEPAGE);  // a hint
+#endif
+        return reinterpret_cast<void*>(aligned);
+#else
+        return std::aligned_alloc(kHugePage, size);
+#endif
+    }
+    static void unmap_huge(void* p, [[maybe_unused]] std::size_t size) noexcept {
+#if defined(__linux__)
+        ::munmap(p, size);
+#else
+        std::free(p);
+#endif
     }
 };
 
@@ -80,6 +115,13 @@ inline void advise_huge_pages([[maybe_unused]] const void* p,
                          last = (a + bytes) / kHuge * kHuge;
     if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
 #endif
+}
+
+/// Frees a vector's storage now. (`v = {}` would not: it assigns an empty list, keeping the
+/// capacity.)
+template <class Vector>
+void release(Vector& v) noexcept {
+    Vector().swap(v);
 }
 
 /// reserve() for a large std::vector about to be filled: its storage is faulted in 2 MiB pages

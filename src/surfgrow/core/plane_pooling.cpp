@@ -44,9 +44,7 @@ std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const Po
     index.neighbour_table(0, index.cube_count(), table);
     // Moments about the index origin: at metre scale in double the sums lose ~1e-14 m^2, far
     // below a patch's spread, and pooling needs no per-pair shift.
-    std::vector<Candidate> cand;
-    reserve_bulk(cand, index.size());
-    cand.resize(index.size());
+    BulkVector<Candidate> cand(index.size());
 #pragma omp parallel for num_threads(std::max(1, cfg.threads)) schedule(static)
     for (std::size_t s = 0; s < index.size(); ++s) {
         const PoolablePatch& p = patches[orig[s]];

@@ -115,7 +115,7 @@ void unregister_points(std::span<const Range> runs, std::span<std::int32_t> labe
 
 /// Per-thread scratch reused across slabs: no allocation per home point.
 struct Scratch {
-    std::vector<GrownSurface> grown;  // every slab this thread grew, one after another
+    BulkVector<GrownSurface> grown;  // every slab this thread grew, one after another
     std::vector<std::uint32_t> order;
     std::vector<std::uint32_t> cube_of;  // cube of each point of the slab, by position in slab
     std::vector<Range> table;
@@ -130,7 +130,7 @@ struct GrowContext {
 
 /// Grows every home point of one slab, in a random order drawn from the slab's own stream.
 void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Scratch& s,
-               std::vector<GrownSurface>& out, SlabCounters& counters) {
+               BulkVector<GrownSurface>& out, SlabCounters& counters) {
     const CubeIndex& index = ctx.index;
     const GrowerConfig& cfg = ctx.config;
     const std::uint32_t p_begin = index.cube_begin(slab.cube_begin);
@@ -349,7 +349,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         }
     }
     const CubeIndex index(cloud.points, cfg.mu, include, threads);
-    include = {};
+    release(include);
     const std::size_t n = index.size();
     st.valid_points = n;
     st.invalid_points = n_in - n - st.cropped_points;
@@ -361,9 +361,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     const int reach = static_cast<int>(std::ceil(cfg.max_radius() / index.cube_size()));
     const std::size_t target = std::clamp<std::size_t>(n / 256, 4096, 65536);
     const std::vector<Slab> slabs = partition_slabs(index, 2 * reach, target);
-    std::vector<std::int32_t> labels;
-    reserve_bulk(labels, n);
-    labels.assign(n, -1);
+    BulkVector<std::int32_t> labels(n, -1);
     // Where each slab's surfaces lie: thread t's scratch.grown[begin, end).
     struct GrownSpan {
         std::size_t thread = 0, begin = 0, end = 0;
@@ -371,8 +369,9 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     std::vector<GrownSpan> grown(slabs.size());
     std::vector<SlabCounters> counters(slabs.size());
     std::vector<Scratch> scratch(static_cast<std::size_t>(threads));
-    // Address space only: a buffer is touched (in huge pages) as far as its thread fills it.
-    for (Scratch& sc : scratch) reserve_bulk(sc.grown, n / 8 + 64);
+    // About one surface per 30 points in scans at the paper's mu; a buffer that fills up doubles.
+    // Kept under 2 MiB for small clouds, where a huge page would mostly stay empty.
+    for (Scratch& sc : scratch) sc.grown.reserve(n / (32 * scratch.size()) + 64);
     const GrowContext ctx{index, cfg, labels};
     std::atomic<std::size_t> done{0};
     for (int colour = 0; colour < 2; ++colour) {
@@ -396,9 +395,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         st.rejected_covered += counters[s].covered;
         st.adapted_surfaces += counters[s].adapted;
     }
-    std::vector<GrownSurface> all;
-    reserve_bulk(all, first.back());
-    all.resize(first.back());
+    BulkVector<GrownSurface> all(first.back());
     BulkVector<std::int32_t> sid_of_home(n);  // read only at homes of kept surfaces
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 4)
     for (std::size_t s = 0; s < slabs.size(); ++s) {
@@ -413,13 +410,13 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
             sid_of_home[order[r].first] = static_cast<std::int32_t>(first[s] + r);
         }
     }
-    for (Scratch& sc : scratch) sc.grown = {};
+    for (Scratch& sc : scratch) release(sc.grown);
         // Every label left after growing is the home of a kept surface (undone homes reset theirs).
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
         if (labels[i] >= 0) labels[i] = sid_of_home[static_cast<std::size_t>(labels[i])];
     }
-    sid_of_home = {};
+    release(sid_of_home);
     const std::size_t surface_count = all.size();
     std::vector<std::uint32_t> home_of(surface_count);  // sorted index of each surface's home
     reserve_bulk(result.surfaces, all.size());
@@ -440,15 +437,13 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     }
     st.surfaces = surface_count;
     if (cfg.pool_angle_deg > 0 && surface_count > 0) {
-        std::vector<PoolablePatch> patches;
-        reserve_bulk(patches, surface_count);
-        patches.resize(surface_count);
+        BulkVector<PoolablePatch> patches(surface_count);
 #pragma omp parallel for num_threads(threads) schedule(static)
         for (std::size_t k = 0; k < surface_count; ++k) {
             const Surface& s = result.surfaces[k];
             patches[k] = {s.home, s.centroid, s.normal, s.eigenvalues[0], all[k].moments};
         }
-        all = {};  // its moments are in the patches now: free them before pooling's own copy
+        release(all);  // its moments are in the patches now: free them before pooling's own copy
         PoolingConfig pc;
         pc.radius = cfg.pool_radius > 0 ? cfg.pool_radius : 2 * cfg.mu;
         pc.max_angle = cfg.pool_angle_deg * M_PI / 180.0;
@@ -456,7 +451,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         pc.max_offset = cfg.mu / 2;
         pc.threads = threads;
         const std::vector<Vec3d> pooled = pool_normals(patches, pc);
-        patches = {};
+        release(patches);
         for (std::size_t k = 0; k < surface_count; ++k) result.surfaces[k].normal = pooled[k];
         // A reported plane must hold its members: release any the refined plane no longer fits
         // (rare: points at the tolerance's edge); the leftover pass may re-attach them.
@@ -474,7 +469,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         }
         st.released_by_refinement = released;
     }
-    all = {};
+    release(all);
     st.seconds.grow = seconds_since(t0);
     for (const std::int32_t l : labels) st.registered_grown += l >= 0 ? 1 : 0;
 
