@@ -56,14 +56,14 @@ static_assert(FloatV::size() <= CubeIndex::kPadding,
     return mo;
 }
 
-/// Calls f(j) for every point j of `runs` within `radius` of `p` (local coordinates), in index
-/// order: the distance tests in SIMD, the calls for the points that pass.
+/// Calls f(j) for every point j of `runs` whose squared distance to `p` (local coordinates) is at
+/// most `r2`, in index order: the distance tests in SIMD, the calls for the points that pass.
 template <class F>
 void for_each_in_runs_within(const CubeIndex& index, std::span<const CubeIndex::Range> runs,
-                             const Vec3f& p, float radius, F&& f) {
+                             const Vec3f& p, float r2, F&& f) {
     constexpr int W = static_cast<int>(FloatV::size());
     const FloatV lane([](int l) { return static_cast<float>(l); });
-    const FloatV px = p.x(), py = p.y(), pz = p.z(), r2 = radius * radius;
+    const FloatV px = p.x(), py = p.y(), pz = p.z(), rr = r2;
     const float* X = index.xs();
     const float* Y = index.ys();
     const float* Z = index.zs();
@@ -73,7 +73,7 @@ void for_each_in_runs_within(const CubeIndex& index, std::span<const CubeIndex::
             const FloatV dy = FloatV(Y + i, simd::element_aligned) - py;
             const FloatV dz = FloatV(Z + i, simd::element_aligned) - pz;
             const auto m =
-                (dx * dx + dy * dy + dz * dz <= r2) && (lane < static_cast<float>(run.end - i));
+                (dx * dx + dy * dy + dz * dz <= rr) && (lane < static_cast<float>(run.end - i));
             if (simd::none_of(m)) continue;
             std::uint32_t bits = 0;
             for (int l = 0; l < W; ++l) bits |= static_cast<std::uint32_t>(m[l]) << l;

@@ -120,6 +120,7 @@ struct Scratch {
     std::vector<std::uint32_t> cube_of;  // cube of each point of the slab, by position in slab
     std::vector<Range> table;
     std::vector<Range> runs;
+    std::vector<Range> far;  // the leftover pass's wider neighbourhood
 };
 
 struct GrowContext {
@@ -226,8 +227,13 @@ void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& sl
                  std::span<const std::int32_t> labels, const std::vector<Surface>& surfaces,
                  std::span<const double> tolerance, Scratch& s,
                  std::vector<std::pair<std::uint32_t, std::int32_t>>& attach) {
-    const auto mu = static_cast<float>(cfg.mu);
+    const auto r2 = static_cast<float>(cfg.mu * cfg.mu);
     const double far_radius = cfg.max_radius();
+    const auto far_r2 = static_cast<float>(far_radius * far_radius);
+    const int far_reach = static_cast<int>(std::ceil(far_radius / index.cube_size()));
+    // Few cubes: for_each_within scans the whole index, in its own order; keep to it there.
+    const bool far_by_columns =
+        double(2 * far_reach + 1) * double(2 * far_reach + 1) <= double(index.cube_count());
     for (std::uint32_t c = slab.cube_begin; c < slab.cube_end; ++c) {
         s.runs.clear();
         for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
@@ -249,16 +255,23 @@ void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& sl
             };
             // Neighbours come in runs of one surface: considering a surface again changes nothing.
             std::int32_t last = -1;
-            for_each_in_runs_within(index, s.runs, p, mu, [&](std::uint32_t j) {
+            for_each_in_runs_within(index, s.runs, p, r2, [&](std::uint32_t j) {
                 const std::int32_t l = labels[j];
                 if (l < 0 || l == last) return;
                 consider(l);
                 last = l;
             });
             if (!any_neighbour && far_radius > cfg.mu) {
-                index.for_each_within(pw, far_radius, [&](std::uint32_t j) {
+                auto far = [&](std::uint32_t j) {
                     if (labels[j] >= 0) consider(labels[j]);
-                });
+                };
+                if (far_by_columns) {  // the columns for_each_within visits, distances in SIMD
+                    s.far.clear();
+                    index.column_ranges(index.cube_coords(c), far_reach, s.far);
+                    for_each_in_runs_within(index, s.far, p, far_r2, far);
+                } else {
+                    index.for_each_within(pw, far_radius, far);
+                }
             }
             if (best >= 0) attach.emplace_back(i, best);
         }
