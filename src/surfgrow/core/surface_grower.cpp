@@ -409,7 +409,6 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         st.adapted_surfaces += counters[s].adapted;
     }
     BulkVector<GrownSurface> all(first.back());
-    BulkVector<std::int32_t> sid_of_home(n);  // read only at homes of kept surfaces
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 4)
     for (std::size_t s = 0; s < slabs.size(); ++s) {
         const std::span<const GrownSurface> mine(
@@ -418,13 +417,16 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         for (std::size_t k = 0; k < mine.size(); ++k)
             order[k] = {mine[k].home, static_cast<std::uint32_t>(k)};
         std::sort(order.begin(), order.end());
-        for (std::size_t r = 0; r < order.size(); ++r) {
-            all[first[s] + r] = mine[order[r].second];
-            sid_of_home[order[r].first] = static_cast<std::int32_t>(first[s] + r);
-        }
+        for (std::size_t r = 0; r < order.size(); ++r) all[first[s] + r] = mine[order[r].second];
     }
     for (Scratch& sc : scratch) release(sc.grown);
-        // Every label left after growing is the home of a kept surface (undone homes reset theirs).
+    // Every label left after growing is the home of a kept surface (undone homes reset theirs):
+    // relabel through a home-to-surface table, read only at those homes. Allocated after the
+    // thread buffers are freed, so that it does not add to the peak.
+    BulkVector<std::int32_t> sid_of_home(n);
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t k = 0; k < all.size(); ++k)
+        sid_of_home[all[k].home] = static_cast<std::int32_t>(k);
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
         if (labels[i] >= 0) labels[i] = sid_of_home[static_cast<std::size_t>(labels[i])];
