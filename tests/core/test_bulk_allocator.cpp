@@ -9,13 +9,11 @@
 namespace surfgrow {
 namespace {
 
-constexpr std::size_t kHuge = std::size_t{2} << 20;
-
 TEST(BulkAllocator, BigBlocksAreHugePageAlignedAndHoldTheirData) {
     for (const std::size_t n : {std::size_t{1} << 19, (std::size_t{5} << 20) / 4 + 3}) {
         BulkVector<std::uint32_t> v(n);
-        ASSERT_GE(n * sizeof(std::uint32_t), kHuge);
-        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % kHuge, 0u) << n;
+        ASSERT_GE(n * sizeof(std::uint32_t), kHugePage);
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % kHugePage, 0u) << n;
         std::iota(v.begin(), v.end(), 7u);
         v.push_back(1);  // grows: a new mapping, the old one copied and unmapped
         EXPECT_EQ(v[0], 7u);

@@ -14,6 +14,14 @@
 
 namespace surfgrow {
 
+/// The huge-page size the bulk arrays are aligned to and advised for.
+inline constexpr std::size_t kHugePage = std::size_t{2} << 20;
+
+/// `v` rounded up to a multiple of kHugePage.
+constexpr std::uintptr_t round_up_to_huge_page(std::uintptr_t v) {
+    return (v + kHugePage - 1) / kHugePage * kHugePage;
+}
+
 /// Allocator for big arrays of trivial values (coordinates, keys, indices, labels).
 ///
 /// - Elements are default-initialised, i.e. left as they are: vectors that are overwritten anyway
@@ -25,7 +33,6 @@ namespace surfgrow {
 template <class T>
 struct BulkAllocator {
     using value_type = T;
-    static constexpr std::size_t kHugePage = std::size_t{2} << 20;
 
     BulkAllocator() = default;
     template <class U>
@@ -66,9 +73,7 @@ struct BulkAllocator {
     }
 
   private:
-    static std::size_t rounded(std::size_t bytes) {
-        return (bytes + kHugePage - 1) / kHugePage * kHugePage;
-    }
+    static std::size_t rounded(std::size_t bytes) { return round_up_to_huge_page(bytes); }
     // Big blocks are mapped directly rather than taken from malloc's heap, so that freeing one
     // gives its memory back to the OS at once: malloc keeps freed blocks of a size it has seen
     // freed before, and the peak resident memory of a run would count them.
@@ -78,7 +83,7 @@ struct BulkAllocator {
                            MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
         if (raw == MAP_FAILED) return nullptr;
         const auto a = reinterpret_cast<std::uintptr_t>(raw);
-        const std::uintptr_t aligned = (a + kHugePage - 1) / kHugePage * kHugePage;
+        const std::uintptr_t aligned = round_up_to_huge_page(a);
         const std::size_t head = aligned - a;
         if (head > 0) ::munmap(raw, head);
         if (kHugePage - head > 0)
@@ -109,10 +114,9 @@ using BulkVector = std::vector<T, BulkAllocator<T>>;
 inline void advise_huge_pages([[maybe_unused]] const void* p,
                               [[maybe_unused]] std::size_t bytes) noexcept {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-    constexpr std::size_t kHuge = std::size_t{2} << 20;
     const auto a = reinterpret_cast<std::uintptr_t>(p);
-    const std::uintptr_t first = (a + kHuge - 1) / kHuge * kHuge,
-                         last = (a + bytes) / kHuge * kHuge;
+    const std::uintptr_t first = round_up_to_huge_page(a),
+                         last = (a + bytes) / kHugePage * kHugePage;
     if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
 #endif
 }

@@ -181,63 +181,27 @@ Eigen::Vector3i CubeIndex::coords_of(const Vec3f& local) const {
     return c;
 }
 
-CubeIndex::Range CubeIndex::column_run(int x, int y, int zlo, int zhi) const {
-    const auto zmax = static_cast<int>((std::int64_t{1} << bits_.z()) - 1);
-    zlo = std::max(0, zlo);
-    zhi = std::min(zmax, zhi);
-    const Eigen::Vector3i lo(x, y, zlo);
-    if (cube_keys_.empty() || zlo > zhi || !in_key_space(lo)) return {};
-    const auto first = std::lower_bound(cube_keys_.begin(), cube_keys_.end(), encode(lo));
-    const auto last = std::upper_bound(first, cube_keys_.end(), encode({x, y, zhi}));
-    return {cube_start_[static_cast<std::size_t>(first - cube_keys_.begin())],
-            cube_start_[static_cast<std::size_t>(last - cube_keys_.begin())]};
+void CubeIndex::column_ranges(const Eigen::Vector3i& coords, int reach,
+                              std::vector<Range>& out) const {
+    for_each_column_run(coords, reach, [&](const Range& r) { out.push_back(r); });
 }
 
-namespace {
-
-/// The first position i >= p at which `before(keys[i])` is false, given that it holds for every
-/// position before p: exponential search from p, then binary search. O(log distance), so runs of
-/// nearby columns cost a few steps each instead of a search over all cubes.
-template <class Before>
-std::size_t gallop(const std::vector<std::uint64_t>& keys, std::size_t p, Before before) {
-    const std::size_t n = keys.size();
+std::size_t CubeIndex::gallop_to(std::size_t p, std::uint64_t key, bool inclusive) const {
+    // Exponential search from p, then binary search: O(log distance), so runs of nearby columns
+    // cost a few steps each instead of a search over all cubes.
+    auto before = [&](std::uint64_t k) { return inclusive ? k <= key : k < key; };
+    const std::size_t n = cube_keys_.size();
     std::size_t lo = p, hi = p, step = 1;
-    while (hi < n && before(keys[hi])) {
+    while (hi < n && before(cube_keys_[hi])) {
         lo = hi + 1;
         hi = lo + step - 1;
         step *= 2;
     }
     hi = std::min(hi, n);
     return static_cast<std::size_t>(
-        std::partition_point(keys.begin() + static_cast<std::ptrdiff_t>(lo),
-                             keys.begin() + static_cast<std::ptrdiff_t>(hi), before) -
-        keys.begin());
-}
-
-}  // namespace
-
-void CubeIndex::column_ranges(const Eigen::Vector3i& coords, int reach,
-                              std::vector<Range>& out) const {
-    if (reach < 0 || cube_keys_.empty()) return;
-    const auto zmax = static_cast<int>((std::int64_t{1} << bits_.z()) - 1);
-    const int zlo = std::max(0, coords.z() - reach);
-    const int zhi = std::min(zmax, coords.z() + reach);
-    if (zlo > zhi) return;
-    // The columns' key ranges increase with (dx, dy): one cursor sweeps forward through the keys.
-    std::size_t cursor = 0;
-    for (int dx = -reach; dx <= reach; ++dx) {
-        for (int dy = -reach; dy <= reach; ++dy) {
-            const int x = coords.x() + dx, y = coords.y() + dy;
-            if (!in_key_space({x, y, zlo})) continue;
-            const std::uint64_t lo = encode({x, y, zlo}), hi = encode({x, y, zhi});
-            const std::size_t first =
-                gallop(cube_keys_, cursor, [lo](std::uint64_t k) { return k < lo; });
-            const std::size_t last =
-                gallop(cube_keys_, first, [hi](std::uint64_t k) { return k <= hi; });
-            cursor = last;
-            if (first < last) out.push_back({cube_start_[first], cube_start_[last]});
-        }
-    }
+        std::partition_point(cube_keys_.begin() + static_cast<std::ptrdiff_t>(lo),
+                             cube_keys_.begin() + static_cast<std::ptrdiff_t>(hi), before) -
+        cube_keys_.begin());
 }
 
 void CubeIndex::neighbour_table(std::size_t cube_begin, std::size_t cube_end,

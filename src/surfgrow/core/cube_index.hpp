@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -73,12 +74,14 @@ class CubeIndex {
     /// The cube coordinates a local position falls in (may be outside the occupied cubes).
     [[nodiscard]] Eigen::Vector3i coords_of(const Vec3f& local) const;
 
-    /// Appends the (2*reach+1)^2 z-column runs covering every cube within `reach` cubes (in x, y
-    /// and z) of the cube at `coords`. Empty runs are omitted. Binary search per column.
-    void column_ranges(const Eigen::Vector3i& coords, int reach, std::vector<Range>& out) const;
+    /// Calls f(run) for the (2*reach+1)^2 z-column runs covering every cube within `reach` cubes
+    /// (in x, y and z) of the cube at `coords`, in key order. Empty runs are skipped. One cursor
+    /// sweeps forward through the cube keys (galloping search), as the columns' keys increase.
+    template <class F>
+    void for_each_column_run(const Eigen::Vector3i& coords, int reach, F&& f) const;
 
-    /// The run of points in cubes (x, y, zlo..zhi); empty if the column is outside the index.
-    [[nodiscard]] Range column_run(int x, int y, int zlo, int zhi) const;
+    /// Appends the runs of for_each_column_run() to `out`.
+    void column_ranges(const Eigen::Vector3i& coords, int reach, std::vector<Range>& out) const;
 
     /// The 9 runs around each cube in [cube_begin, cube_end), in one linear sweep:
     /// out[9 * (c - cube_begin) + k]. Faster than column_ranges() when most cubes are visited.
@@ -94,6 +97,9 @@ class CubeIndex {
     [[nodiscard]] Eigen::Vector3i key_bits() const { return bits_; }
 
   private:
+    /// The first cube position >= p whose key is not below `key` (above, if `inclusive`), given
+    /// that every position before p is.
+    [[nodiscard]] std::size_t gallop_to(std::size_t p, std::uint64_t key, bool inclusive) const;
     [[nodiscard]] Vec3f local_of(const Vec3f& p) const {
         return (p.cast<double>() - origin_).cast<float>();
     }
@@ -141,12 +147,26 @@ void CubeIndex::for_each_within(const Vec3d& q, double radius, F&& f) const {
         scan(0, static_cast<std::uint32_t>(size()));  // cheaper than visiting the columns
         return;
     }
-    const Eigen::Vector3i c = coords_of(ql);
-    const int k = static_cast<int>(reach);
-    for (int dx = -k; dx <= k; ++dx) {
-        for (int dy = -k; dy <= k; ++dy) {
-            const Range run = column_run(c.x() + dx, c.y() + dy, c.z() - k, c.z() + k);
-            scan(run.begin, run.end);
+    for_each_column_run(coords_of(ql), static_cast<int>(reach),
+                        [&](const Range& run) { scan(run.begin, run.end); });
+}
+
+template <class F>
+void CubeIndex::for_each_column_run(const Eigen::Vector3i& coords, int reach, F&& f) const {
+    if (reach < 0 || cube_keys_.empty()) return;
+    const auto zmax = static_cast<int>((std::int64_t{1} << bits_.z()) - 1);
+    const int zlo = std::max(0, coords.z() - reach);
+    const int zhi = std::min(zmax, coords.z() + reach);
+    if (zlo > zhi) return;
+    std::size_t cursor = 0;
+    for (int dx = -reach; dx <= reach; ++dx) {
+        for (int dy = -reach; dy <= reach; ++dy) {
+            const int x = coords.x() + dx, y = coords.y() + dy;
+            if (!in_key_space({x, y, zlo})) continue;
+            const std::size_t first = gallop_to(cursor, encode({x, y, zlo}), false);
+            const std::size_t last = gallop_to(first, encode({x, y, zhi}), true);
+            cursor = last;
+            if (first < last) f(Range{cube_start_[first], cube_start_[last]});
         }
     }
 }

@@ -120,7 +120,6 @@ struct Scratch {
     std::vector<std::uint32_t> cube_of;  // cube of each point of the slab, by position in slab
     std::vector<Range> table;
     std::vector<Range> runs;
-    std::vector<Range> far;  // the leftover pass's wider neighbourhood
 };
 
 struct GrowContext {
@@ -229,11 +228,6 @@ void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& sl
                  std::vector<std::pair<std::uint32_t, std::int32_t>>& attach) {
     const auto r2 = static_cast<float>(cfg.mu * cfg.mu);
     const double far_radius = cfg.max_radius();
-    const auto far_r2 = static_cast<float>(far_radius * far_radius);
-    const int far_reach = static_cast<int>(std::ceil(far_radius / index.cube_size()));
-    // Few cubes: for_each_within scans the whole index, in its own order; keep to it there.
-    const bool far_by_columns =
-        double(2 * far_reach + 1) * double(2 * far_reach + 1) <= double(index.cube_count());
     for (std::uint32_t c = slab.cube_begin; c < slab.cube_end; ++c) {
         s.runs.clear();
         for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
@@ -262,16 +256,9 @@ void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& sl
                 last = l;
             });
             if (!any_neighbour && far_radius > cfg.mu) {
-                auto far = [&](std::uint32_t j) {
+                index.for_each_within(pw, far_radius, [&](std::uint32_t j) {
                     if (labels[j] >= 0) consider(labels[j]);
-                };
-                if (far_by_columns) {  // the columns for_each_within visits, distances in SIMD
-                    s.far.clear();
-                    index.column_ranges(index.cube_coords(c), far_reach, s.far);
-                    for_each_in_runs_within(index, s.far, p, far_r2, far);
-                } else {
-                    index.for_each_within(pw, far_radius, far);
-                }
+                });
             }
             if (best >= 0) attach.emplace_back(i, best);
         }
@@ -434,11 +421,11 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     release(sid_of_home);
     const std::size_t surface_count = all.size();
     std::vector<std::uint32_t> home_of(surface_count);  // sorted index of each surface's home
-    reserve_bulk(result.surfaces, all.size());
-    result.surfaces.resize(all.size());
-    std::vector<double> tolerance(all.size());
+    reserve_bulk(result.surfaces, surface_count);
+    result.surfaces.resize(surface_count);
+    std::vector<double> tolerance(surface_count);
 #pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::size_t k = 0; k < all.size(); ++k) {
+    for (std::size_t k = 0; k < surface_count; ++k) {
         const GrownSurface& g = all[k];
         home_of[k] = g.home;
         Surface& s = result.surfaces[k];
