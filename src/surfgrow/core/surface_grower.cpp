@@ -498,67 +498,95 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     const bool per_scan = orient.source == OrientationSource::kScanOrigins;
     st.range_known = orient.source != OrientationSource::kUp;
     st.range_origin = orient.origin;
+    // Labels in input order. Points not in the index (invalid, cropped) are marked first, so
+    // that the range bands below can stream the input in its own order and skip them.
+    constexpr std::int32_t kNotIndexed = -2;
     reserve_bulk(result.labels, n_in);
-    result.labels.assign(n_in, -1);
-    // Two independent passes over the points, side by side: per-surface statistics (in point
-    // order, so the residual sums are the same for any thread count), and the labels in input
-    // order with the range bands.
+    result.labels.assign(n_in, kNotIndexed);
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t i = 0; i < n; ++i) result.labels[orig[i]] = labels[i];
+
+    // Per-surface statistics, in the index's float frame: members, bounds, residual sum. Each
+    // thread owns a range of surface ids and visits their members in point order, so every
+    // residual sum is added up in the same order whatever the thread count.
     const std::vector<LocalPlane> planes = local_planes(index, result.surfaces, tolerance);
     std::vector<Vec3f> lo(surface_count, Vec3f::Constant(std::numeric_limits<float>::max()));
     std::vector<Vec3f> hi(surface_count, Vec3f::Constant(std::numeric_limits<float>::lowest()));
     std::vector<double> residual_sum(surface_count, 0.0);
-    std::vector<RangeBand> bands;
-#pragma omp parallel sections num_threads(std::min(threads, 2))
+#pragma omp parallel num_threads(threads)
     {
-#pragma omp section
-        {
-            // Per surface, in the index's float frame: members, bounds, residual sum.
-            for (std::size_t i = 0; i < n; ++i) {
-                const std::int32_t l = labels[i];
-                if (l < 0) continue;
-                const auto k = static_cast<std::size_t>(l);
-                const Vec3f p = index.local_point(static_cast<std::uint32_t>(i));
-                ++result.surfaces[k].point_count;
-                lo[k] = lo[k].cwiseMin(p);
-                hi[k] = hi[k].cwiseMax(p);
-                residual_sum[k] += static_cast<double>(planes[k].distance(p));
-            }
-        }
-#pragma omp section
-        {
-            for (std::size_t i = 0; i < n; ++i) result.labels[orig[i]] = labels[i];
-            if (st.range_known) {
-                std::vector<Vec3f> origins;  // local frame: one, or one per scan
-                if (per_scan)
-                    for (const Vec3d& o : cloud.scan_origins) origins.push_back(index.to_local(o));
-                else
-                    origins.push_back(index.to_local(orient.origin));
-                const auto inv_band = static_cast<float>(1.0 / cfg.range_band);
-                for (std::size_t i = 0; i < n; ++i) {
-                    std::uint32_t o = 0;
-                    if (per_scan) {
-                        o = cloud.scan_index[orig[i]];
-                        if (o >= origins.size()) o = 0;
-                    }
-                    const float r =
-                        (index.local_point(static_cast<std::uint32_t>(i)) - origins[o]).norm();
-                    const auto band =
-                        static_cast<std::size_t>(std::min(r * inv_band, float(kMaxRangeBands - 1)));
-                    if (band >= bands.size()) bands.resize(band + 1);
-                    ++bands[band].points;
-                    bands[band].registered += labels[i] >= 0 ? 1 : 0;
-                }
-            }
+        const auto parts = static_cast<std::size_t>(omp_get_num_threads());
+        const auto part = static_cast<std::size_t>(omp_get_thread_num());
+        const auto from = static_cast<std::uint32_t>(surface_count * part / parts);
+        const auto count = static_cast<std::uint32_t>(surface_count * (part + 1) / parts) - from;
+        for (std::size_t i = 0; i < n; ++i) {
+            // One unsigned compare: also false for the unregistered (-1).
+            const std::uint32_t k = static_cast<std::uint32_t>(labels[i]) - from;
+            if (k >= count) continue;
+            const std::size_t s = from + k;
+            const Vec3f p = index.local_point(static_cast<std::uint32_t>(i));
+            ++result.surfaces[s].point_count;
+            lo[s] = lo[s].cwiseMin(p);
+            hi[s] = hi[s].cwiseMax(p);
+            residual_sum[s] += static_cast<double>(planes[s].distance(p));
         }
     }
+
+    // Registration by range band, over the input in its order (integer counts: any split of the
+    // work gives the same totals); the not-indexed mark becomes the unregistered label.
+    std::vector<RangeBand> bands;
+    std::vector<Vec3f> origins;  // relative to the cloud's offset: one, or one per scan
+    if (per_scan)
+        for (const Vec3d& o : cloud.scan_origins) origins.push_back(o.cast<float>());
+    else
+        origins.push_back(orient.origin.cast<float>());
+    const auto inv_band = static_cast<float>(1.0 / cfg.range_band);
+    std::vector<std::vector<RangeBand>> thread_bands(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+    {
+        std::vector<RangeBand>& mine = thread_bands[static_cast<std::size_t>(omp_get_thread_num())];
+        if (st.range_known) mine.resize(kMaxRangeBands);
+#pragma omp for schedule(static)
+        for (std::size_t j = 0; j < n_in; ++j) {
+            std::int32_t& l = result.labels[j];
+            if (l == kNotIndexed) {
+                l = -1;
+                continue;
+            }
+            if (!st.range_known) continue;
+            std::uint32_t o = 0;
+            if (per_scan) {
+                o = cloud.scan_index[j];
+                if (o >= origins.size()) o = 0;
+            }
+            const float r = (cloud.points[j] - origins[o]).norm();
+            const auto band =
+                static_cast<std::size_t>(std::min(r * inv_band, float(kMaxRangeBands - 1)));
+            ++mine[band].points;
+            mine[band].registered += l >= 0 ? 1 : 0;
+        }
+    }
+    if (st.range_known) {
+        bands.resize(kMaxRangeBands);
+        for (const auto& mine : thread_bands) {
+            for (std::size_t b = 0; b < mine.size(); ++b) {
+                bands[b].points += mine[b].points;
+                bands[b].registered += mine[b].registered;
+            }
+        }
+        while (!bands.empty() && bands.back().points == 0) bands.pop_back();
+    }
+    std::uint64_t registered = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : registered)
     for (std::size_t k = 0; k < surface_count; ++k) {
         Surface& s = result.surfaces[k];
-        st.registered += s.point_count;
+        registered += s.point_count;
         if (s.point_count == 0) continue;
         s.mean_residual = residual_sum[k] / s.point_count;
         s.bounds.add(index.origin() + lo[k].cast<double>());
         s.bounds.add(index.origin() + hi[k].cast<double>());
     }
+    st.registered = registered;
     st.noise_points = st.valid_points - st.registered;
 
     auto origin_of = [&](std::uint32_t sorted) -> Vec3d {
@@ -568,6 +596,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         }
         return orient.origin;
     };
+#pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t k = 0; k < surface_count; ++k) {
         Surface& s = result.surfaces[k];
         const Vec3d towards = orient.source == OrientationSource::kUp
