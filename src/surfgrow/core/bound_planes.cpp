@@ -3,13 +3,16 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <numeric>
 
 #include "surfgrow/core/boundary_polygon.hpp"
+#include "surfgrow/core/bulk_allocator.hpp"
 #include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/core/neighbourhood.hpp"
 #include "surfgrow/core/plane_raster.hpp"
 #include "surfgrow/core/symmetric_eigen.hpp"
 #include "surfgrow/core/text.hpp"
@@ -92,78 +95,103 @@ Members collect_members(std::span<const Vec3f> points, std::span<const std::int3
 }
 
 // Adjacency of patches: member points within `reach` of each other, or home points within the
-// sum of the radii. Sorted, unique pairs (a < b).
+// sum of the radii. Sorted, unique pairs (a < b). The search runs in parallel over batches of
+// cubes; each batch keeps its pairs sorted and unique, and the final sort makes the result
+// independent of the thread count.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_pairs(
     std::span<const Vec3f> points, std::span<const std::int32_t> labels,
     std::span<const Surface> surfaces, const std::vector<std::uint8_t>& used, double reach,
     int threads) {
-    std::vector<std::uint64_t> packed;
-    auto add = [&](std::uint32_t a, std::uint32_t b) {
+    auto key = [](std::uint32_t a, std::uint32_t b) {
         if (a > b) std::swap(a, b);
-        packed.push_back((std::uint64_t{a} << 32) | b);
+        return (std::uint64_t{a} << 32) | b;
+    };
+    auto sort_unique = [](std::vector<std::uint64_t>& v) {
+        std::sort(v.begin(), v.end());
+        v.erase(std::unique(v.begin(), v.end()), v.end());
     };
     std::vector<std::uint8_t> include(points.size(), 0);
+#pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t i = 0; i < points.size(); ++i)
         include[i] = labels[i] >= 0 && used[static_cast<std::size_t>(labels[i])] ? 1 : 0;
-    const CubeIndex index(points, reach, include, threads);
-    if (index.size() > 0) {
-        std::vector<std::int32_t> label(index.size());
-        const auto original = index.original_indices();
-        for (std::size_t i = 0; i < index.size(); ++i) label[i] = labels[original[i]];
-        const float r2 = static_cast<float>(reach * reach);
+    const CubeIndex index(points, 2 * reach, include, threads);
+    release(include);
+    std::vector<std::int32_t> label(index.size());
+    const auto original = index.original_indices();
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t i = 0; i < index.size(); ++i) label[i] = labels[original[i]];
+    const float r2 = static_cast<float>(reach * reach);
+    constexpr std::size_t kBatch = 4096;  // cubes per neighbour-table sweep: bounded memory
+    const std::size_t batches = (index.cube_count() + kBatch - 1) / kBatch;
+    std::vector<std::vector<std::uint64_t>> found(batches);
+#pragma omp parallel num_threads(threads)
+    {
         std::vector<CubeIndex::Range> table;
-        std::vector<std::uint64_t> local;
-        constexpr std::size_t kBatch = 4096;  // cubes per neighbour-table sweep: bounded memory
-        for (std::size_t c0 = 0; c0 < index.cube_count(); c0 += kBatch) {
-            const std::size_t c1 = std::min(index.cube_count(), c0 + kBatch);
+#pragma omp for schedule(dynamic, 1)
+        for (std::size_t b = 0; b < batches; ++b) {
+            const std::size_t c0 = b * kBatch, c1 = std::min(index.cube_count(), c0 + kBatch);
             index.neighbour_table(c0, c1, table);
+            std::vector<std::uint64_t>& out = found[b];
             for (std::size_t c = c0; c < c1; ++c) {
-                local.clear();
+                const std::size_t cube_first = out.size();
+                const CubeIndex::Range* runs = &table[9 * (c - c0)];
                 for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
-                    const Vec3f p = index.local_point(i);
-                    for (std::size_t k = 0; k < 9; ++k) {
-                        const CubeIndex::Range run = table[9 * (c - c0) + k];
-                        for (std::uint32_t j = std::max(run.begin, i + 1); j < run.end; ++j) {
-                            if (label[j] == label[i]) continue;
-                            if ((index.local_point(j) - p).squaredNorm() > r2) continue;
-                            auto a = static_cast<std::uint32_t>(label[i]);
-                            auto b = static_cast<std::uint32_t>(label[j]);
-                            if (a > b) std::swap(a, b);
-                            local.push_back((std::uint64_t{a} << 32) | b);
-                        }
-                    }
+                    std::array<CubeIndex::Range, 9> after;  // each pair once: j > i
+                    for (std::size_t k = 0; k < 9; ++k)
+                        after[k] = {std::max(runs[k].begin, i + 1), std::max(runs[k].end, i + 1)};
+                    const auto li = static_cast<std::uint32_t>(label[i]);
+                    for_each_in_runs_within(
+                        index, after, index.local_point(i), r2, [&](std::uint32_t j) {
+                            const auto lj = static_cast<std::uint32_t>(label[j]);
+                            if (lj == li) return;
+                            const std::uint64_t kj = key(li, lj);
+                            if (out.size() == cube_first || out.back() != kj) out.push_back(kj);
+                        });
                 }
-                std::sort(local.begin(), local.end());
-                local.erase(std::unique(local.begin(), local.end()), local.end());
-                packed.insert(packed.end(), local.begin(), local.end());
+                // Sorted and unique per cube (short lists), so the batch's sort is short too.
+                const auto first = out.begin() + static_cast<std::ptrdiff_t>(cube_first);
+                std::sort(first, out.end());
+                out.erase(std::unique(first, out.end()), out.end());
             }
+            sort_unique(out);
         }
     }
     // Home points within the sum of the radii.
     std::vector<Vec3f> homes(surfaces.size());
-    std::vector<std::uint8_t> home_used(surfaces.size());
     double max_radius = 0;
     for (std::size_t s = 0; s < surfaces.size(); ++s) {
         homes[s] = surfaces[s].home.cast<float>();
-        home_used[s] = used[s];
         if (used[s]) max_radius = std::max(max_radius, surfaces[s].radius);
     }
+    std::vector<std::vector<std::uint64_t>> near_homes(static_cast<std::size_t>(threads));
     if (max_radius > 0) {
-        const CubeIndex hindex(homes, 2 * max_radius, home_used, 1);
-        const auto original = hindex.original_indices();
-        for (std::size_t s = 0; s < surfaces.size(); ++s) {
-            if (!used[s]) continue;
-            const Surface& a = surfaces[s];
-            hindex.for_each_within(a.home, a.radius + max_radius, [&](std::uint32_t j) {
-                const std::uint32_t t = original[j];
-                if (t <= s) return;
-                if ((surfaces[t].home - a.home).norm() <= a.radius + surfaces[t].radius)
-                    add(static_cast<std::uint32_t>(s), t);
-            });
+        const CubeIndex hindex(homes, 2 * max_radius, used, 1);
+        const auto home_of = hindex.original_indices();
+#pragma omp parallel num_threads(threads)
+        {
+            std::vector<std::uint64_t>& out =
+                near_homes[static_cast<std::size_t>(omp_get_thread_num())];
+#pragma omp for schedule(dynamic, 256)
+            for (std::size_t s = 0; s < surfaces.size(); ++s) {
+                if (!used[s]) continue;
+                const Surface& a = surfaces[s];
+                hindex.for_each_within(a.home, a.radius + max_radius, [&](std::uint32_t j) {
+                    const std::uint32_t t = home_of[j];
+                    if (t <= s) return;
+                    if ((surfaces[t].home - a.home).norm() <= a.radius + surfaces[t].radius)
+                        out.push_back(key(static_cast<std::uint32_t>(s), t));
+                });
+            }
         }
     }
-    std::sort(packed.begin(), packed.end());
-    packed.erase(std::unique(packed.begin(), packed.end()), packed.end());
+    std::vector<std::uint64_t> packed;
+    std::size_t total = 0;
+    for (const auto& v : found) total += v.size();
+    for (const auto& v : near_homes) total += v.size();
+    packed.reserve(total);
+    for (const auto& v : found) packed.insert(packed.end(), v.begin(), v.end());
+    for (const auto& v : near_homes) packed.insert(packed.end(), v.begin(), v.end());
+    sort_unique(packed);
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs(packed.size());
     for (std::size_t k = 0; k < packed.size(); ++k)
         pairs[k] = {static_cast<std::uint32_t>(packed[k] >> 32),
@@ -246,7 +274,7 @@ void absorb_fragments(std::span<const Vec3f> points, const Members& members,
 void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8_t>& used,
                  const std::vector<std::int32_t>& region, const BoundPlaneConfig& cfg,
                  std::vector<std::vector<std::uint32_t>>& region_members,
-                 std::vector<CentredMoments>& region_moments) {
+                 std::vector<CentredMoments>& region_moments, int threads) {
     const std::size_t nr = region_members.size();
     if (cfg.max_gap <= 0 || nr < 2) return;
     std::vector<Vec3f> homes(surfaces.size());
@@ -255,22 +283,36 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
         homes[s] = surfaces[s].home.cast<float>();
         if (used[s]) max_radius = std::max(max_radius, surfaces[s].radius);
     }
+    // Candidate region pairs, in parallel over the patches (sorted and unique in the end, so the
+    // same for any thread count).
     const CubeIndex index(homes, cfg.max_gap + 2 * max_radius, used, 1);
     const auto original = index.original_indices();
-    std::vector<std::uint64_t> pairs;
-    for (std::size_t p = 0; p < surfaces.size(); ++p) {
-        if (!used[p]) continue;
-        const Surface& a = surfaces[p];
-        const auto ra = static_cast<std::uint32_t>(region[p]);
-        index.for_each_within(a.home, cfg.max_gap + a.radius + max_radius, [&](std::uint32_t j) {
-            const std::uint32_t q = original[j];
-            const auto rb = static_cast<std::uint32_t>(region[q]);
-            if (ra == rb || region_members[ra].empty() || region_members[rb].empty()) return;
-            if ((surfaces[q].home - a.home).norm() - a.radius - surfaces[q].radius > cfg.max_gap)
-                return;
-            pairs.push_back((std::uint64_t{std::min(ra, rb)} << 32) | std::max(ra, rb));
-        });
+    std::vector<std::vector<std::uint64_t>> found(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+    {
+        std::vector<std::uint64_t>& out = found[static_cast<std::size_t>(omp_get_thread_num())];
+#pragma omp for schedule(dynamic, 256)
+        for (std::size_t p = 0; p < surfaces.size(); ++p) {
+            if (!used[p]) continue;
+            const Surface& a = surfaces[p];
+            const auto ra = static_cast<std::uint32_t>(region[p]);
+            if (region_members[ra].empty()) continue;
+            index.for_each_within(
+                a.home, cfg.max_gap + a.radius + max_radius, [&](std::uint32_t j) {
+                    const std::uint32_t q = original[j];
+                    const auto rb = static_cast<std::uint32_t>(region[q]);
+                    if (ra == rb || region_members[rb].empty()) return;
+                    if ((surfaces[q].home - a.home).norm() - a.radius - surfaces[q].radius >
+                        cfg.max_gap)
+                        return;
+                    const std::uint64_t key =
+                        (std::uint64_t{std::min(ra, rb)} << 32) | std::max(ra, rb);
+                    if (out.empty() || out.back() != key) out.push_back(key);
+                });
+        }
     }
+    std::vector<std::uint64_t> pairs;
+    for (const auto& v : found) pairs.insert(pairs.end(), v.begin(), v.end());
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
     std::vector<std::uint32_t> parent(nr);
@@ -482,7 +524,7 @@ BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surfac
     }
     absorb_fragments(cloud.points, members, adj_off, adj, cfg, region, region_members,
                      region_moments, moments);
-    bridge_gaps(surfaces, used, region, cfg, region_members, region_moments);
+    bridge_gaps(surfaces, used, region, cfg, region_members, region_moments, threads);
     std::erase_if(region_members, [](const std::vector<std::uint32_t>& l) { return l.empty(); });
     std::erase_if(region_moments, [](const CentredMoments& m) { return m.n == 0; });
     for (std::vector<std::uint32_t>& list : region_members) std::sort(list.begin(), list.end());
