@@ -1,14 +1,18 @@
 // surfgrow in the peers' harness: the library called as the README shows, timed like the peers.
 //
 //   peer_surfgrow CLOUD --out DIR [--mu 0.012] [--min-pts 10] [--threads 0] [--seed 1]
-//                 [--mu-max 0] [--min-seconds 1] [--max-repeats 5]
+//                 [--mu-max 0] [--planes] [--min-seconds 1] [--max-repeats 5]
 //
 // I/O = io::read_cloud. Algorithm = grow_surfaces (cube index, growing, leftover pass, normal
 // pooling, statistics), everything else at its default, as `surfgrow grow` runs it.
+// --planes: also compute_bound_planes (planes.json's planes: patches merged into faces, a plane
+// fitted to each face's points, boundary polygons), timed with the growing; the segments are then
+// the bound planes, like the peers' planes.
 #include <cstring>
 #include <iostream>
 
 #include "peer_common.hpp"
+#include "surfgrow/core/bound_planes.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/io/cloud_io.hpp"
 
@@ -18,7 +22,8 @@ int main(int argc, char** argv) {
         const std::string out = args.str("out", ".");
         peers::Report rep;
         rep.tool = "surfgrow";
-        rep.method = "grow";
+        const bool bound = args.has("planes");
+        rep.method = bound ? "planes" : "grow";
         rep.input = args.input();
         rep.baseline_rss = peers::proc_status_bytes("VmRSS");
 
@@ -47,13 +52,23 @@ int main(int argc, char** argv) {
                       {"mu_max", cfg.max_radius()},
                       {"seed", static_cast<double>(cfg.seed)}};
 
+        surfgrow::BoundPlaneConfig bpc;  // every bound-plane option at its default
+        bpc.mu = cfg.mu;
+        bpc.threads = cfg.threads;
         surfgrow::GrowResult result;
+        surfgrow::BoundPlanes bound_planes;
+        double bound_seconds = 0;
         rep.algorithm_peak_valid = peers::reset_peak_rss();
         rep.algorithm_seconds = peers::repeat_timed(
             [&](int run) {
                 surfgrow::GrowResult r = surfgrow::grow_surfaces(cloud, cfg);
+                surfgrow::BoundPlanes b;
+                const double tb = peers::now_s();
+                if (bound) b = surfgrow::compute_bound_planes(cloud, r, bpc);
                 if (run == 0) {
+                    bound_seconds = peers::now_s() - tb;
                     result = std::move(r);
+                    bound_planes = std::move(b);
                     // Peak of the first run, before a repeat's second result coexists with it.
                     rep.algorithm_peak_rss = peers::proc_status_bytes("VmHWM");
                 }
@@ -64,6 +79,7 @@ int main(int argc, char** argv) {
                              {"grow", result.stats.seconds.grow},
                              {"attach", result.stats.seconds.attach},
                              {"finish", result.stats.seconds.finish}};
+        if (bound) rep.stage_seconds["bound_planes"] = bound_seconds;
         rep.segments = result.surfaces.size();
         rep.notes["registered_reported"] = std::to_string(result.stats.registered);
         rep.notes["outputs_bytes"] =
@@ -71,15 +87,26 @@ int main(int argc, char** argv) {
                            result.surfaces.size() * sizeof(surfgrow::Surface));
 
         std::vector<double> planes;
-        planes.reserve(4 * result.surfaces.size());
-        for (const surfgrow::Surface& s : result.surfaces) {
-            planes.insert(planes.end(),
-                          {s.normal.x(), s.normal.y(), s.normal.z(), s.plane_offset()});
+        if (bound) {
+            rep.segments = bound_planes.planes.size();
+            for (const surfgrow::BoundPlane& b : bound_planes.planes) {
+                const surfgrow::Plane pl = b.plane();
+                planes.insert(planes.end(), {pl.normal.x(), pl.normal.y(), pl.normal.z(), pl.d});
+            }
+            peers::write_binary(out + "/labels.i32",
+                                surfgrow::plane_labels(bound_planes, result.labels));
+        } else {
+            planes.reserve(4 * result.surfaces.size());
+            for (const surfgrow::Surface& s : result.surfaces) {
+                planes.insert(planes.end(),
+                              {s.normal.x(), s.normal.y(), s.normal.z(), s.plane_offset()});
+            }
+            peers::write_binary(out + "/labels.i32", result.labels);
         }
-        peers::write_binary(out + "/labels.i32", result.labels);
         peers::write_binary(out + "/planes.f64", planes);
         peers::write_report(out + "/result.json", rep);
-        std::cout << "surfgrow: " << rep.points << " points -> " << rep.segments << " surfaces in "
+        std::cout << "surfgrow: " << rep.points << " points -> " << rep.segments
+                  << (bound ? " planes in " : " surfaces in ")
                   << peers::median(rep.algorithm_seconds) << " s\n";
         return 0;
     } catch (const std::exception& e) {

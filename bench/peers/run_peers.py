@@ -55,6 +55,9 @@ TOOLS = [
     # The README's answer to sparse far ranges: the radius doubles up to 4 mu where a home point
     # has too few neighbours (k-nearest peers adapt their neighbourhood to density implicitly).
     ("surfgrow", "grow-adaptive"),
+    # What a robot takes its faces from: the patches merged into bound planes (planes.json), a
+    # plane fitted to each face's points. The peers' segments are whole planes too.
+    ("surfgrow", "planes"),
     ("pcl", "region-growing"),
     ("pcl", "ransac"),
     ("cgal", "region-growing"),
@@ -234,7 +237,7 @@ def tool_command(build, tool, method, cloud_path, out, p, threads, a):
         return [str(build / "bench/peers/peer_surfgrow"), cloud_path, "--out", out, "--mu",
                 str(p["mu"]), "--min-pts", str(p["min_pts"]), "--threads", str(threads),
                 "--seed", "1"] + (["--mu-max", str(4 * p["mu"])] if method == "grow-adaptive"
-                                  else []) + rep
+                                  else []) + (["--planes"] if method == "planes" else []) + rep
     common = ["--out", out, "--k", str(p["k"]), "--tol", str(p["tol"]), "--min-pts",
               str(p["min_pts"]), "--min-plane", str(p["min_plane"])]
     if tool == "pcl":
@@ -495,7 +498,7 @@ def headline(results, cloud_file, method="grow"):
 
 
 HEADLINE_CLOUDS = [("channel-1scan", "single scan"), ("channel-4scans", "4 fused scans")]
-SG_METHODS = ["grow", "grow-adaptive"]
+SG_METHODS = ["grow", "grow-adaptive", "planes"]
 
 
 def write_report(a, results, path):
@@ -568,8 +571,12 @@ def write_report(a, results, path):
         if not h:
             continue
         title = f"{title}, {method}"
-        L.append(f"| ≥ 100× faster than the fastest peer, {title} | {h['ratio']:.0f}× | "
-                 f"{'yes' if h['ratio'] >= 100 else 'no'} |")
+        if method == "planes":  # the speed target is the growing's; this row is for accuracy
+            L.append(f"| faster than the fastest peer (no target), {title} | {h['ratio']:.1f}× | "
+                     f"– |")
+        else:
+            L.append(f"| ≥ 100× faster than the fastest peer, {title} | {h['ratio']:.0f}× | "
+                     f"{'yes' if h['ratio'] >= 100 else 'no'} |")
         L.append(f"| registered % above every peer's, {title} | {fmt(h['sg_reg'])} % vs "
                  f"{fmt(h['best_reg']['metrics']['registered_pct'])} % | "
                  f"{'yes' if h['sg_reg'] > h['best_reg']['metrics']['registered_pct'] else 'no'} |")
