@@ -120,6 +120,7 @@ struct Scratch {
     std::vector<std::uint32_t> cube_of;  // cube of each point of the slab, by position in slab
     std::vector<Range> table;
     std::vector<Range> runs;
+    std::vector<Range> far_runs;  // the leftover pass's wider search, per cube
 };
 
 struct GrowContext {
@@ -228,8 +229,11 @@ void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& sl
                  std::vector<std::pair<std::uint32_t, std::int32_t>>& attach) {
     const auto r2 = static_cast<float>(cfg.mu * cfg.mu);
     const double far_radius = cfg.max_radius();
+    const auto far_r2 = static_cast<float>(far_radius * far_radius);
+    const int far_reach = static_cast<int>(std::ceil(far_radius / index.cube_size()));
     for (std::uint32_t c = slab.cube_begin; c < slab.cube_end; ++c) {
         s.runs.clear();
+        s.far_runs.clear();
         for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
             if (labels[i] >= 0) continue;
             if (s.runs.empty()) index.column_ranges(index.cube_coords(c), 1, s.runs);
@@ -256,8 +260,14 @@ void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& sl
                 last = l;
             });
             if (!any_neighbour && far_radius > cfg.mu) {
-                index.for_each_within(pw, far_radius, [&](std::uint32_t j) {
-                    if (labels[j] >= 0) consider(labels[j]);
+                // Isolated at mu: the adaptive radius's reach. Its columns serve the whole cube.
+                if (s.far_runs.empty())
+                    index.column_ranges(index.cube_coords(c), far_reach, s.far_runs);
+                for_each_in_runs_within(index, s.far_runs, p, far_r2, [&](std::uint32_t j) {
+                    const std::int32_t l = labels[j];
+                    if (l < 0 || l == last) return;
+                    consider(l);
+                    last = l;
                 });
             }
             if (best >= 0) attach.emplace_back(i, best);
