@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <deque>
+#include <initializer_list>
 #include <numeric>
 
 #include "surfgrow/core/boundary_polygon.hpp"
@@ -94,6 +95,22 @@ Members collect_members(std::span<const Vec3f> points, std::span<const std::int3
     return m;
 }
 
+// An unordered pair of ids as one sortable key: smaller id in the high half.
+std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
+    return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
+}
+
+// The keys of every part, sorted and unique: the same whatever the split into parts.
+std::vector<std::uint64_t> merged_unique(
+    std::initializer_list<const std::vector<std::vector<std::uint64_t>>*> sources) {
+    std::vector<std::uint64_t> all;
+    for (const auto* parts : sources)
+        for (const auto& v : *parts) all.insert(all.end(), v.begin(), v.end());
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    return all;
+}
+
 // Adjacency of patches: member points within `reach` of each other, or home points within the
 // sum of the radii. Sorted, unique pairs (a < b). The search runs in parallel over batches of
 // cubes; each batch keeps its pairs sorted and unique, and the final sort makes the result
@@ -102,14 +119,6 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_pairs(
     std::span<const Vec3f> points, std::span<const std::int32_t> labels,
     std::span<const Surface> surfaces, const std::vector<std::uint8_t>& used, double reach,
     int threads) {
-    auto key = [](std::uint32_t a, std::uint32_t b) {
-        if (a > b) std::swap(a, b);
-        return (std::uint64_t{a} << 32) | b;
-    };
-    auto sort_unique = [](std::vector<std::uint64_t>& v) {
-        std::sort(v.begin(), v.end());
-        v.erase(std::unique(v.begin(), v.end()), v.end());
-    };
     std::vector<std::uint8_t> include(points.size(), 0);
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t i = 0; i < points.size(); ++i)
@@ -144,16 +153,18 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_pairs(
                         index, after, index.local_point(i), r2, [&](std::uint32_t j) {
                             const auto lj = static_cast<std::uint32_t>(label[j]);
                             if (lj == li) return;
-                            const std::uint64_t kj = key(li, lj);
+                            const std::uint64_t kj = pair_key(li, lj);
                             if (out.size() == cube_first || out.back() != kj) out.push_back(kj);
                         });
                 }
-                // Sorted and unique per cube (short lists), so the batch's sort is short too.
+                // Unique per cube (short lists to sort), then per batch, in parallel: the final
+                // serial sort then has far fewer keys.
                 const auto first = out.begin() + static_cast<std::ptrdiff_t>(cube_first);
                 std::sort(first, out.end());
                 out.erase(std::unique(first, out.end()), out.end());
             }
-            sort_unique(out);
+            std::sort(out.begin(), out.end());
+            out.erase(std::unique(out.begin(), out.end()), out.end());
         }
     }
     // Home points within the sum of the radii.
@@ -179,19 +190,12 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_pairs(
                     const std::uint32_t t = home_of[j];
                     if (t <= s) return;
                     if ((surfaces[t].home - a.home).norm() <= a.radius + surfaces[t].radius)
-                        out.push_back(key(static_cast<std::uint32_t>(s), t));
+                        out.push_back(pair_key(static_cast<std::uint32_t>(s), t));
                 });
             }
         }
     }
-    std::vector<std::uint64_t> packed;
-    std::size_t total = 0;
-    for (const auto& v : found) total += v.size();
-    for (const auto& v : near_homes) total += v.size();
-    packed.reserve(total);
-    for (const auto& v : found) packed.insert(packed.end(), v.begin(), v.end());
-    for (const auto& v : near_homes) packed.insert(packed.end(), v.begin(), v.end());
-    sort_unique(packed);
+    const std::vector<std::uint64_t> packed = merged_unique({&found, &near_homes});
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs(packed.size());
     for (std::size_t k = 0; k < packed.size(); ++k)
         pairs[k] = {static_cast<std::uint32_t>(packed[k] >> 32),
@@ -305,16 +309,12 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
                     if ((surfaces[q].home - a.home).norm() - a.radius - surfaces[q].radius >
                         cfg.max_gap)
                         return;
-                    const std::uint64_t key =
-                        (std::uint64_t{std::min(ra, rb)} << 32) | std::max(ra, rb);
+                    const std::uint64_t key = pair_key(ra, rb);
                     if (out.empty() || out.back() != key) out.push_back(key);
                 });
         }
     }
-    std::vector<std::uint64_t> pairs;
-    for (const auto& v : found) pairs.insert(pairs.end(), v.begin(), v.end());
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    const std::vector<std::uint64_t> pairs = merged_unique({&found});
     std::vector<std::uint32_t> parent(nr);
     std::iota(parent.begin(), parent.end(), 0u);
     auto root = [&](std::uint32_t r) {

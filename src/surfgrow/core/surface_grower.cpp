@@ -253,22 +253,18 @@ void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& sl
             };
             // Neighbours come in runs of one surface: considering a surface again changes nothing.
             std::int32_t last = -1;
-            for_each_in_runs_within(index, s.runs, p, r2, [&](std::uint32_t j) {
+            auto visit = [&](std::uint32_t j) {
                 const std::int32_t l = labels[j];
                 if (l < 0 || l == last) return;
                 consider(l);
                 last = l;
-            });
+            };
+            for_each_in_runs_within(index, s.runs, p, r2, visit);
             if (!any_neighbour && far_radius > cfg.mu) {
                 // Isolated at mu: the adaptive radius's reach. Its columns serve the whole cube.
                 if (s.far_runs.empty())
                     index.column_ranges(index.cube_coords(c), far_reach, s.far_runs);
-                for_each_in_runs_within(index, s.far_runs, p, far_r2, [&](std::uint32_t j) {
-                    const std::int32_t l = labels[j];
-                    if (l < 0 || l == last) return;
-                    consider(l);
-                    last = l;
-                });
+                for_each_in_runs_within(index, s.far_runs, p, far_r2, visit);
             }
             if (best >= 0) attach.emplace_back(i, best);
         }
