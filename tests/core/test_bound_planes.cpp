@@ -1,6 +1,8 @@
 // Bound planes on analytic scenes: exact normals, holes, concave outlines, bad input.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <functional>
 #include <random>
@@ -82,6 +84,52 @@ TEST(BoundPlanes, NoisyLKeepsNormalsWithinATenthOfADegree) {
     // The offset default comes from the measured noise: 3 sigma, within [mu/4, mu/2].
     EXPECT_NEAR(p.config.max_offset, 3 * p.stats.noise, 1e-12);
     EXPECT_GT(p.stats.noise, 0.0008);
+}
+
+TEST(BoundPlanes, AStripOfTheNeighbouringFaceDoesNotTiltThePlane) {
+    // A floor patch (noise 1 mm) that took in the wall's points within its tolerance along their
+    // edge, as registration does along every edge (a hand-made result, to control the strip): the
+    // least-squares plane of all members tilts by half a degree; the face's plane is fitted on
+    // the members within 3 robust sigma, which the strip (4 mm and more above) is not.
+    PointCloud c;
+    GrowResult r;
+    std::mt19937_64 rng(7);
+    std::normal_distribution<double> noise(0.0, 0.001);
+    for (int i = 0; i <= 60; ++i)
+        for (int j = 0; j <= 40; ++j)
+            c.points.emplace_back(float(0.005 * i), float(0.005 * j), float(noise(rng)));
+    for (int k = 2; k <= 6; ++k)  // the wall x = 0.3, from 4 to 12 mm above the floor
+        for (int j = 0; j <= 40; ++j)
+            c.points.emplace_back(float(0.3 + noise(rng)), float(0.005 * j), float(0.002 * k));
+    r.labels.assign(c.points.size(), 0);
+    Surface surf;
+    surf.home = Vec3d(0.15, 0.1, 0);
+    surf.centroid = surf.home;
+    surf.normal = Vec3d::UnitZ();
+    surf.eigenvalues = Vec3d(1e-6, 1e-3, 1e-2);
+    surf.radius = 0.012;
+    surf.neighbours = 20;
+    surf.point_count = c.points.size();
+    r.surfaces.push_back(surf);
+    c.viewpoint = Vec3d(0.15, 0.1, 1);
+
+    // The plain least-squares normal, for contrast.
+    Vec3d mean = Vec3d::Zero();
+    for (const Vec3f& p : c.points) mean += p.cast<double>();
+    mean /= double(c.points.size());
+    Mat3d cov = Mat3d::Zero();
+    for (const Vec3f& p : c.points)
+        cov += (p.cast<double>() - mean) * (p.cast<double>() - mean).transpose();
+    const Vec3d plain = Eigen::SelfAdjointEigenSolver<Mat3d>(cov).eigenvectors().col(0);
+    EXPECT_GT(angle_between(plain, Vec3d::UnitZ()), 0.3 * kDeg);
+
+    const BoundPlanes p = compute_bound_planes(c, r, BoundPlaneConfig{});
+    ASSERT_EQ(p.planes.size(), 1u);
+    const BoundPlane& bp = p.planes[0];
+    EXPECT_LT(angle_between(bp.normal, Vec3d::UnitZ()), 0.05 * kDeg);
+    EXPECT_NEAR(bp.centroid.z(), 0.0, 3e-4);     // the inliers' centroid, on the floor
+    EXPECT_EQ(bp.point_count, c.points.size());  // every member stays in the face
+    EXPECT_GT(bp.rms, 0.002);                    // which the strip's distances show
 }
 
 TEST(BoundPlanes, APlateWithASquareHoleHasOneHoleOfTheRightArea) {

@@ -23,6 +23,10 @@ namespace surfgrow {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
+// A face's plane is refitted on the member points within this many robust sigmas (1.4826 x the
+// median distance) of the previous fit, at most this many times.
+constexpr double kInlierSigmas = 3.0;
+constexpr int kRefitPasses = 5;
 
 [[noreturn]] void bad(std::initializer_list<std::string_view> what) {
     throw Error(ErrorCode::kInvalidParameter, cat(what));
@@ -68,6 +72,37 @@ double median_of(std::vector<double> v) {
     const auto mid = v.begin() + static_cast<long>(v.size() / 2);
     std::nth_element(v.begin(), mid, v.end());
     return *mid;
+}
+
+// The plane of the points within k robust sigma of (normal, centroid), as moments: points of
+// a neighbouring face that some patch near the edge registered within its tolerance tilt a
+// least-squares fit of all members; the inliers' fit does without them.
+CentredMoments inlier_moments(std::span<const Vec3d> points, const Vec3d& normal,
+                              const Vec3d& centroid, double k, double floor_scale,
+                              std::vector<double>& scratch) {
+    scratch.clear();
+    for (const Vec3d& p : points) scratch.push_back(std::abs(normal.dot(p - centroid)));
+    const auto mid = scratch.begin() + static_cast<std::ptrdiff_t>(scratch.size() / 2);
+    std::nth_element(scratch.begin(), mid, scratch.end());
+    const double sigma = scratch.empty() ? 0.0 : 1.4826 * *mid;
+    // Points exactly on a plane still scatter by the float coordinates' rounding: keep them.
+    const double limit = std::max(k * sigma, 1e-6 * floor_scale);
+    Vec3d sum = Vec3d::Zero();
+    Mat3d sq = Mat3d::Zero();
+    double n = 0;
+    for (const Vec3d& p : points) {
+        const Vec3d d = p - centroid;
+        if (std::abs(normal.dot(d)) > limit) continue;
+        sum += d;
+        sq += d * d.transpose();
+        n += 1;
+    }
+    CentredMoments m;
+    if (n < 3) return m;
+    m.n = n;
+    m.mean = centroid + sum / n;
+    m.scatter = sq - sum * sum.transpose() / n;
+    return m;
 }
 
 // Member points of each surface, input order: CSR offsets and indices.
@@ -536,10 +571,31 @@ BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surfac
     for (std::size_t r = 0; r < nr; ++r) {
         BoundPlane& bp = planes[r];
         const std::vector<std::uint32_t>& list = region_members[r];
-        const CentredMoments& m = region_moments[r];
-        const Fit fit = fit_moments(m);
+        const CentredMoments& all = region_moments[r];
+        Fit fit = fit_moments(all);
+        CentredMoments m = all;
+        std::vector<Vec3d> points;  // the members, contiguous: every pass below streams them
+        points.reserve(static_cast<std::size_t>(all.n));
+        for (const std::uint32_t s : list)
+            for (const std::uint32_t i : members.of(s))
+                points.push_back(cloud.points[i].cast<double>());
+        if (!fit.degenerate) {
+            // Until the inliers stop changing (two or three passes on the test scenes).
+            const double spread = std::sqrt(all.scatter.trace() / all.n);
+            std::vector<double> scratch;
+            for (int pass = 0; pass < kRefitPasses; ++pass) {
+                const CentredMoments inliers =
+                    inlier_moments(points, fit.normal, m.mean, kInlierSigmas, spread, scratch);
+                const Fit f = fit_moments(inliers);
+                if (inliers.n < 3 || f.degenerate) break;
+                const bool same = inliers.n == m.n;
+                m = inliers;
+                fit = f;
+                if (same) break;
+            }
+        }
         bp.patches = list;
-        bp.point_count = static_cast<std::uint64_t>(m.n);
+        bp.point_count = static_cast<std::uint64_t>(all.n);
         bp.centroid = m.mean;
         bp.degenerate = fit.degenerate;
         Vec3d n = fit.normal;
@@ -563,18 +619,18 @@ BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surfac
                               ? votes < 0
                               : (weight != 0 ? weight < 0 : surfaces[list[0]].normal.dot(n) < 0);
         bp.normal = flip ? Vec3d(-n) : n;
-        bp.rms = std::sqrt(std::max(0.0, bp.normal.dot(m.scatter * bp.normal) / m.n));
-        bp.u_axis = principal_axis(bp.normal, m.scatter);
+        bp.rms = std::sqrt(std::max(0.0, bp.normal.dot(all.scatter * bp.normal) / all.n +
+                                             std::pow(bp.normal.dot(all.mean - m.mean), 2)));
+        bp.u_axis = principal_axis(bp.normal, all.scatter);
         bp.v_axis = bp.normal.cross(bp.u_axis);
         std::vector<Vec2d> flat;
         flat.reserve(bp.point_count);
         std::vector<double> spacing;
+        for (const Vec3d& p : points) {
+            bp.bounds.add(p);
+            flat.push_back(bp.to_plane(p));
+        }
         for (const std::uint32_t s : list) {
-            for (const std::uint32_t i : members.of(s)) {
-                const Vec3d p = cloud.points[i].cast<double>();
-                bp.bounds.add(p);
-                flat.push_back(bp.to_plane(p));
-            }
             const Surface& f = surfaces[s];
             if (f.neighbours > 0)
                 spacing.push_back(std::sqrt(M_PI * f.radius * f.radius / double(f.neighbours)));

@@ -45,7 +45,7 @@ void validate(const BoundPlaneConfig& config);
 /// One planar region: a structural face (a flange, a web, the deck).
 struct BoundPlane {
     Vec3d normal = Vec3d::UnitZ();       ///< unit, facing the sensor (majority of its patches)
-    Vec3d centroid = Vec3d::Zero();      ///< of the member points; the plane passes here
+    Vec3d centroid = Vec3d::Zero();      ///< of the inlier member points; the plane passes here
     Vec3d u_axis = Vec3d::UnitX();       ///< in-plane principal axis (largest spread)
     Vec3d v_axis = Vec3d::UnitY();       ///< normal x u_axis
     double area = 0.0;                   ///< of the polygons, holes subtracted [units^2]
