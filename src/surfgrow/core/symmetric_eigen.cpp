@@ -28,8 +28,8 @@ Vec3d null_vector(const Mat3d& m) {
 
 SymmetricEigen3 symmetric_eigen(const Mat3d& a) {
     SymmetricEigen3 out;
-    const Vec3d rough = detail::cubic_eigenvalues(a);
-    double lambda = std::min({rough[0], rough[1], rough[2]});
+    const detail::NormalisedCubic c = detail::normalised_cubic(a);
+    double lambda = c.scalar ? c.q : c.q + c.p * detail::smallest_normalised_root(c.d);
     Vec3d n = null_vector(a - lambda * Mat3d::Identity());
     lambda = n.dot(a * n);
     n = null_vector(a - lambda * Mat3d::Identity());
@@ -37,7 +37,8 @@ SymmetricEigen3 symmetric_eigen(const Mat3d& a) {
     const Vec3d v = n.cross(u);
     const double auu = u.dot(a * u), avv = v.dot(a * v), auv = u.dot(a * v);
     const double mean = 0.5 * (auu + avv);
-    const double radius = std::hypot(0.5 * (auu - avv), auv);
+    const double half = 0.5 * (auu - avv);
+    const double radius = std::sqrt(half * half + auv * auv);  // well scaled: no hypot needed
     out.values = {n.dot(a * n), mean - radius, mean + radius};
     out.smallest_vector = n;
     if (out.values[1] < out.values[0]) {

@@ -16,23 +16,60 @@ struct SymmetricEigen3 {
 
 namespace detail {
 
-/// Eigenvalues by the trigonometric solution of the characteristic cubic (Smith 1961): cheap,
-/// but at a repeated root only accurate to sqrt(epsilon), hence the refinement below.
-inline Vec3d cubic_eigenvalues(const Mat3d& a) {
+/// The eigenvalues of a symmetric 3x3 matrix A are q + p * beta, where q = trace / 3 and the
+/// betas, in [-2, 2], are the roots of beta^3 - 3 beta - d with d = det((A - q I) / p) in [-2, 2]
+/// (Smith 1961). `scalar`: A is a multiple of the identity (p = 0).
+struct NormalisedCubic {
+    double q = 0, p = 0, d = 0;
+    bool scalar = false;
+};
+
+inline NormalisedCubic normalised_cubic(const Mat3d& a) {
+    NormalisedCubic c;
     const double p1 = a(0, 1) * a(0, 1) + a(0, 2) * a(0, 2) + a(1, 2) * a(1, 2);
-    const double q = a.trace() / 3.0;
-    const double d0 = a(0, 0) - q, d1 = a(1, 1) - q, d2 = a(2, 2) - q;
+    c.q = a.trace() / 3.0;
+    const double d0 = a(0, 0) - c.q, d1 = a(1, 1) - c.q, d2 = a(2, 2) - c.q;
     const double p2 = d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * p1;
-    if (p2 <= 1e-300) return Vec3d::Constant(q);  // a multiple of the identity
-    const double p = std::sqrt(p2 / 6.0);
-    const double b00 = d0 / p, b11 = d1 / p, b22 = d2 / p;
-    const double b01 = a(0, 1) / p, b02 = a(0, 2) / p, b12 = a(1, 2) / p;
-    const double det = b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) +
-                       b02 * (b01 * b12 - b11 * b02);
-    const double phi = std::acos(std::clamp(det / 2.0, -1.0, 1.0)) / 3.0;
-    const double largest = q + 2.0 * p * std::cos(phi);
-    const double smallest = q + 2.0 * p * std::cos(phi + 2.0 * M_PI / 3.0);
-    return {smallest, 3.0 * q - largest - smallest, largest};
+    if (p2 <= 1e-300) {
+        c.scalar = true;
+        return c;
+    }
+    c.p = std::sqrt(p2 / 6.0);
+    const double b00 = d0 / c.p, b11 = d1 / c.p, b22 = d2 / c.p;
+    const double b01 = a(0, 1) / c.p, b02 = a(0, 2) / c.p, b12 = a(1, 2) / c.p;
+    c.d = std::clamp(b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02) +
+                         b02 * (b01 * b12 - b11 * b02),
+                     -2.0, 2.0);
+    return c;
+}
+
+/// The smallest root of beta^3 - 3 beta - d, |d| <= 2, by Newton's method from -2: the cubic is
+/// increasing and concave left of -1, so the iterates climb monotonically to the root,
+/// quadratically where it is simple (every plane patch; a few steps), linearly where it is double
+/// (d = 2: collinear points, which the 2x2 step of symmetric_eigen() sorts out). Cheaper than the
+/// trigonometric solution's acos and cos.
+inline double smallest_normalised_root(double d) {
+    double b = -2.0;
+    for (int k = 0; k < 64; ++k) {
+        const double f = (b * b - 3.0) * b - d;
+        const double slope = 3.0 * (b * b - 1.0);
+        if (!(f < 0) || !(slope > 0)) break;  // at the root, to rounding
+        const double step = f / slope;
+        b -= step;
+        if (-step <= 1e-15) break;
+    }
+    return std::min(b, -1.0);
+}
+
+/// All three eigenvalues, ascending: the smallest root, then the other two from the quadratic
+/// left after dividing it out, beta^2 + r beta + r^2 - 3. At a repeated root only accurate to
+/// sqrt(epsilon), hence the refinement in symmetric_eigen().
+inline Vec3d cubic_eigenvalues(const Mat3d& a) {
+    const NormalisedCubic c = normalised_cubic(a);
+    if (c.scalar) return Vec3d::Constant(c.q);
+    const double r = smallest_normalised_root(c.d);
+    const double h = 0.5 * std::sqrt(std::max(0.0, 12.0 - 3.0 * r * r));
+    return {c.q + c.p * r, c.q + c.p * (-0.5 * r - h), c.q + c.p * (-0.5 * r + h)};
 }
 
 }  // namespace detail
@@ -42,7 +79,7 @@ inline Vec3d cubic_eigenvalues(const Mat3d& a) {
 /// rejections; decisions at the margin go to symmetric_eigen().
 [[nodiscard]] inline Vec3d rough_eigenvalues(const Mat3d& a) {
     Vec3d e = detail::cubic_eigenvalues(a);
-    std::sort(e.data(), e.data() + 3);
+    std::sort(e.data(), e.data() + 3);  // in order already, but for rounding
     return e;
 }
 
