@@ -50,6 +50,29 @@ TEST(SymmetricEigen, MatchesIterativeSolverOverWideSpectra) {
     }
 }
 
+TEST(SymmetricEigen, RoughEigenvaluesMatchTheIterativeSolver) {
+    // The quick plane test's eigenvalues: Newton's smallest root and the deflated quadratic.
+    // Accurate to 1e-10 |A| where the roots are simple, ~sqrt(eps) where two coincide: the
+    // smallest pair (collinear points: Newton converges linearly there) or the largest (a disk).
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(-8, 0);
+    for (int trial = 0; trial < 5000; ++trial) {
+        Vec3d v(std::pow(10.0, u(rng)), std::pow(10.0, u(rng)), std::pow(10.0, u(rng)));
+        if (trial % 5 == 0) v[1] = v[0];
+        if (trial % 5 == 1) v[1] = v[2];
+        if (trial % 7 == 0) v[0] = 0;
+        const Mat3d a = with_spectrum(v, rng);
+        const Vec3d ref = Eigen::SelfAdjointEigenSolver<Mat3d>(a).eigenvalues();
+        const Vec3d e = rough_eigenvalues(a);
+        const double scale = ref.cwiseAbs().maxCoeff();
+        const bool simple = ref[1] - ref[0] > 1e-6 * scale && ref[2] - ref[1] > 1e-6 * scale;
+        for (int k = 0; k < 3; ++k)
+            ASSERT_NEAR(e[k], ref[k], (simple ? 1e-10 : 1e-7) * scale) << trial << " " << k;
+    }
+    EXPECT_EQ(rough_eigenvalues(Mat3d::Zero()), Vec3d::Zero());
+    EXPECT_EQ(rough_eigenvalues(4.0 * Mat3d::Identity()), Vec3d::Constant(4.0));
+}
+
 TEST(SymmetricEigen, DegenerateMatrices) {
     EXPECT_EQ(symmetric_eigen(Mat3d::Zero()).values, Vec3d::Zero());
     EXPECT_EQ(symmetric_eigen(2.5 * Mat3d::Identity()).values, Vec3d::Constant(2.5));
