@@ -326,6 +326,17 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
     // same for any thread count).
     const CubeIndex index(homes, cfg.max_gap + 2 * max_radius, used, 1);
     const auto original = index.original_indices();
+    // Regions in the index's order, -1 for regions absorbed as fragments: most homes within reach
+    // are of the patch's own region, and this skips them before any distance.
+    constexpr std::uint32_t kNone = ~std::uint32_t{0};
+    std::vector<std::uint32_t> region_at(index.size());
+    for (std::size_t j = 0; j < index.size(); ++j) {
+        const auto r = static_cast<std::uint32_t>(region[original[j]]);
+        region_at[j] = region_members[r].empty() ? kNone : r;
+    }
+    const float* X = index.xs();
+    const float* Y = index.ys();
+    const float* Z = index.zs();
     std::vector<std::vector<std::uint64_t>> found(static_cast<std::size_t>(threads));
 #pragma omp parallel num_threads(threads)
     {
@@ -336,17 +347,21 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
             const Surface& a = surfaces[p];
             const auto ra = static_cast<std::uint32_t>(region[p]);
             if (region_members[ra].empty()) continue;
-            index.for_each_within(
-                a.home, cfg.max_gap + a.radius + max_radius, [&](std::uint32_t j) {
-                    const std::uint32_t q = original[j];
-                    const auto rb = static_cast<std::uint32_t>(region[q]);
-                    if (ra == rb || region_members[rb].empty()) return;
-                    if ((surfaces[q].home - a.home).norm() - a.radius - surfaces[q].radius >
-                        cfg.max_gap)
-                        return;
+            const Vec3f h = index.to_local(a.home);
+            const double reach = cfg.max_gap + a.radius + max_radius;  // <= the cube side
+            const auto r2 = static_cast<float>(reach * reach);
+            index.for_each_column_run(index.coords_of(h), 1, [&](const CubeIndex::Range& run) {
+                for (std::uint32_t j = run.begin; j < run.end; ++j) {
+                    const std::uint32_t rb = region_at[j];
+                    if (rb == ra || rb == kNone) continue;
+                    const float dx = X[j] - h.x(), dy = Y[j] - h.y(), dz = Z[j] - h.z();
+                    if (dx * dx + dy * dy + dz * dz > r2) continue;
+                    const Surface& b = surfaces[original[j]];
+                    if ((b.home - a.home).norm() - a.radius - b.radius > cfg.max_gap) continue;
                     const std::uint64_t key = pair_key(ra, rb);
                     if (out.empty() || out.back() != key) out.push_back(key);
-                });
+                }
+            });
         }
     }
     const std::vector<std::uint64_t> pairs = merged_unique({&found});
