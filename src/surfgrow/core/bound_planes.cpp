@@ -213,6 +213,9 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_pairs(
     if (max_radius > 0) {
         const CubeIndex hindex(homes, 2 * max_radius, used, 1);
         const auto home_of = hindex.original_indices();
+        const float* HX = hindex.xs();
+        const float* HY = hindex.ys();
+        const float* HZ = hindex.zs();
 #pragma omp parallel num_threads(threads)
         {
             std::vector<std::uint64_t>& out =
@@ -221,12 +224,21 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_pairs(
             for (std::size_t s = 0; s < surfaces.size(); ++s) {
                 if (!used[s]) continue;
                 const Surface& a = surfaces[s];
-                hindex.for_each_within(a.home, a.radius + max_radius, [&](std::uint32_t j) {
-                    const std::uint32_t t = home_of[j];
-                    if (t <= s) return;
-                    if ((surfaces[t].home - a.home).norm() <= a.radius + surfaces[t].radius)
-                        out.push_back(pair_key(static_cast<std::uint32_t>(s), t));
-                });
+                const Vec3f h = hindex.to_local(a.home);
+                const double within = a.radius + max_radius;  // <= the cube side
+                const auto w2 = static_cast<float>(within * within);
+                // Each pair once (t > s), tested before any distance.
+                hindex.for_each_column_run(
+                    hindex.coords_of(h), 1, [&](const CubeIndex::Range& run) {
+                        for (std::uint32_t j = run.begin; j < run.end; ++j) {
+                            const std::uint32_t t = home_of[j];
+                            if (t <= s) continue;
+                            const float dx = HX[j] - h.x(), dy = HY[j] - h.y(), dz = HZ[j] - h.z();
+                            if (dx * dx + dy * dy + dz * dz > w2) continue;
+                            if ((surfaces[t].home - a.home).norm() <= a.radius + surfaces[t].radius)
+                                out.push_back(pair_key(static_cast<std::uint32_t>(s), t));
+                        }
+                    });
             }
         }
     }
