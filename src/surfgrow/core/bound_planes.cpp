@@ -160,7 +160,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_pairs(
         include[i] = labels[i] >= 0 && used[static_cast<std::size_t>(labels[i])] ? 1 : 0;
     const CubeIndex index(points, 2 * reach, include, threads);
     release(include);
-    std::vector<std::int32_t> label(index.size());
+    std::vector<std::int32_t> label(index.size() + CubeIndex::kPadding, -1);  // SIMD-readable
     const auto original = index.original_indices();
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t i = 0; i < index.size(); ++i) label[i] = labels[original[i]];
@@ -184,11 +184,11 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_pairs(
                     for (std::size_t k = 0; k < 9; ++k)
                         after[k] = {std::max(runs[k].begin, i + 1), std::max(runs[k].end, i + 1)};
                     const auto li = static_cast<std::uint32_t>(label[i]);
-                    for_each_in_runs_within(
-                        index, after, index.local_point(i), r2, [&](std::uint32_t j) {
-                            const auto lj = static_cast<std::uint32_t>(label[j]);
-                            if (lj == li) return;
-                            const std::uint64_t kj = pair_key(li, lj);
+                    for_each_other_in_runs_within(
+                        index, after, index.local_point(i), r2, label.data(), label[i],
+                        [&](std::uint32_t j) {
+                            const std::uint64_t kj =
+                                pair_key(li, static_cast<std::uint32_t>(label[j]));
                             if (out.size() == cube_first || out.back() != kj) out.push_back(kj);
                         });
                 }

@@ -56,14 +56,17 @@ static_assert(FloatV::size() <= CubeIndex::kPadding,
     return mo;
 }
 
-/// Calls f(j) for every point j of `runs` whose squared distance to `p` (local coordinates) is at
-/// most `r2`, in index order: the distance tests in SIMD, the calls for the points that pass.
+namespace detail {
+
+/// The loop of for_each_in_runs_within(); with `labels`, only points whose label is not `skip`.
 template <class F>
-void for_each_in_runs_within(const CubeIndex& index, std::span<const CubeIndex::Range> runs,
-                             const Vec3f& p, float r2, F&& f) {
+void runs_within(const CubeIndex& index, std::span<const CubeIndex::Range> runs, const Vec3f& p,
+                 float r2, const std::int32_t* labels, std::int32_t skip, F&& f) {
+    using IntV = simd::rebind_simd_t<std::int32_t, FloatV>;
     constexpr int W = static_cast<int>(FloatV::size());
     const FloatV lane([](int l) { return static_cast<float>(l); });
     const FloatV px = p.x(), py = p.y(), pz = p.z(), rr = r2;
+    const IntV skipv = skip;
     const float* X = index.xs();
     const float* Y = index.ys();
     const float* Z = index.zs();
@@ -77,12 +80,37 @@ void for_each_in_runs_within(const CubeIndex& index, std::span<const CubeIndex::
             if (simd::none_of(m)) continue;
             std::uint32_t bits = 0;
             for (int l = 0; l < W; ++l) bits |= static_cast<std::uint32_t>(m[l]) << l;
+            if (labels) {
+                const auto other = IntV(labels + i, simd::element_aligned) != skipv;
+                std::uint32_t keep = 0;
+                for (int l = 0; l < W; ++l) keep |= static_cast<std::uint32_t>(other[l]) << l;
+                bits &= keep;
+            }
             while (bits) {
                 f(i + static_cast<std::uint32_t>(std::countr_zero(bits)));
                 bits &= bits - 1;
             }
         }
     }
+}
+
+}  // namespace detail
+
+/// Calls f(j) for every point j of `runs` whose squared distance to `p` (local coordinates) is at
+/// most `r2`, in index order: the distance tests in SIMD, the calls for the points that pass.
+template <class F>
+void for_each_in_runs_within(const CubeIndex& index, std::span<const CubeIndex::Range> runs,
+                             const Vec3f& p, float r2, F&& f) {
+    detail::runs_within(index, runs, p, r2, nullptr, 0, f);
+}
+
+/// The same, for the points whose label (`labels`, in index order, readable for
+/// CubeIndex::kPadding past the end) is not `label`: the labels compared in SIMD too.
+template <class F>
+void for_each_other_in_runs_within(const CubeIndex& index, std::span<const CubeIndex::Range> runs,
+                                   const Vec3f& p, float r2, const std::int32_t* labels,
+                                   std::int32_t label, F&& f) {
+    detail::runs_within(index, runs, p, r2, labels, label, f);
 }
 
 /// Sets labels[i] = label for every still unregistered point (labels[i] < 0) of `runs` within
