@@ -404,8 +404,8 @@ def run_scaling(a, build, work, clouds, mem_limit, results):
         # Rounds of alternating processes (1 thread, N threads, 1, N, ...): a burst of load from
         # other jobs then falls on both thread counts, not on one process's repeats. Seconds are
         # the median over every repeat of every round.
-        row = {"rounds": THREAD_ROUNDS}
-        first = {}
+        row = {"rounds": THREAD_ROUNDS, "identical": True}
+        reference = None  # the first run that finished: every other is compared with it
         for k in range(THREAD_ROUNDS):
             for t in (1, os.cpu_count()):
                 out = work / "threads" / name / f"t{t}-r{k}"
@@ -415,16 +415,18 @@ def run_scaling(a, build, work, clouds, mem_limit, results):
                 cmd[cmd.index("--max-repeats") + 1] = str(max(a.max_repeats, 5))
                 status, wall, maxrss = run_watched(cmd, out / "log.txt", a.timeout_surfgrow,
                                                    mem_limit)
-                rep = json.loads((out / "result.json").read_text()) if status == "ok" else None
-                cur = row.setdefault(f"t{t}", {"status": status, "report": rep, "seconds": []})
+                cur = row.setdefault(f"t{t}", {"status": "ok", "report": None, "seconds": []})
                 if status != "ok":
                     cur["status"] = status
-                elif rep:
-                    cur["seconds"] += rep["algorithm_seconds"]
-                first.setdefault(t, out)
-                same = all((first[1] / f).read_bytes() == (out / f).read_bytes()
-                           for f in ("labels.i32", "planes.f64")) if status == "ok" else False
-                row["identical"] = row.get("identical", True) and same
+                    row["identical"] = False
+                    continue
+                rep = json.loads((out / "result.json").read_text())
+                cur["report"] = cur["report"] or rep
+                cur["seconds"] += rep["algorithm_seconds"]
+                reference = reference or out
+                row["identical"] = row["identical"] and all(
+                    (reference / f).read_bytes() == (out / f).read_bytes()
+                    for f in ("labels.i32", "planes.f64"))
         thr[name] = row
         log(f"  threads {name}: identical={row['identical']}")
         save(results, work)
@@ -756,7 +758,7 @@ def write_report(a, results, path):
         L.append("")
         L.append(f"{THREAD_ROUNDS} rounds of alternating processes (1 thread, {mi['cores']}, 1, "
                  f"...), each repeating at least 5 times; seconds: the median over every repeat "
-                 "of every round; outputs: every round's labels and planes against the first's.")
+                 "of every round; outputs: every run's labels and planes against the first run's.")
         L.append("")
         L.append("| cloud | 1 thread s | " + f"{mi['cores']} threads s | speed-up | outputs |")
         L.append("|---|---|---|---|---|")

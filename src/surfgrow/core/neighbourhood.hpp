@@ -56,6 +56,16 @@ static_assert(FloatV::size() <= CubeIndex::kPadding,
     return mo;
 }
 
+/// The lanes of a SIMD mask as bits, lane l in bit l.
+template <class Mask>
+[[nodiscard]] inline std::uint32_t lane_bits(const Mask& m) {
+    static_assert(Mask::size() <= 32);
+    std::uint32_t bits = 0;
+    for (int l = 0; l < static_cast<int>(Mask::size()); ++l)
+        bits |= static_cast<std::uint32_t>(m[l]) << l;
+    return bits;
+}
+
 namespace detail {
 
 /// The loop of for_each_in_runs_within(); with `labels`, only points whose label is not `skip`.
@@ -78,14 +88,8 @@ void runs_within(const CubeIndex& index, std::span<const CubeIndex::Range> runs,
             const auto m =
                 (dx * dx + dy * dy + dz * dz <= rr) && (lane < static_cast<float>(run.end - i));
             if (simd::none_of(m)) continue;
-            std::uint32_t bits = 0;
-            for (int l = 0; l < W; ++l) bits |= static_cast<std::uint32_t>(m[l]) << l;
-            if (labels) {
-                const auto other = IntV(labels + i, simd::element_aligned) != skipv;
-                std::uint32_t keep = 0;
-                for (int l = 0; l < W; ++l) keep |= static_cast<std::uint32_t>(other[l]) << l;
-                bits &= keep;
-            }
+            std::uint32_t bits = lane_bits(m);
+            if (labels) bits &= lane_bits(IntV(labels + i, simd::element_aligned) != skipv);
             while (bits) {
                 f(i + static_cast<std::uint32_t>(std::countr_zero(bits)));
                 bits &= bits - 1;
@@ -138,8 +142,7 @@ inline std::uint32_t register_points(const CubeIndex& index, std::span<const Cub
             const auto m = (dx * dx + dy * dy + dz * dz <= r2) && (dist <= tol) &&
                            (lane < static_cast<float>(run.end - i));
             if (simd::none_of(m)) continue;
-            std::uint32_t bits = 0;
-            for (int l = 0; l < W; ++l) bits |= static_cast<std::uint32_t>(m[l]) << l;
+            std::uint32_t bits = lane_bits(m);
             while (bits) {
                 const std::uint32_t j = i + static_cast<std::uint32_t>(std::countr_zero(bits));
                 bits &= bits - 1;

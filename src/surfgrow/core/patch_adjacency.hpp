@@ -1,0 +1,55 @@
+// Which patches touch: the patch graph that bound planes grow their regions on, and the
+// key and search helpers it shares with gap bridging.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <initializer_list>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "surfgrow/core/cube_index.hpp"
+#include "surfgrow/core/geometry.hpp"
+#include "surfgrow/core/surface.hpp"
+
+namespace surfgrow {
+
+/// An unordered pair of ids as one sortable key: smaller id in the high half.
+[[nodiscard]] inline std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
+    return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
+}
+
+/// The keys of every part, sorted and unique: the same whatever the split into parts.
+[[nodiscard]] std::vector<std::uint64_t> merged_unique(
+    std::initializer_list<const std::vector<std::vector<std::uint64_t>>*> sources);
+
+/// Calls f(j) for each home j of `index` (built over home points with cube side >= reach) that
+/// `keep(j)` admits and that lies within `reach` of `home`: keep, cheap and mostly false (the
+/// same region, an earlier patch), is asked before any distance.
+template <class Keep, class F>
+void for_each_home_near(const CubeIndex& index, const Vec3d& home, double reach, Keep&& keep,
+                        F&& f) {
+    const Vec3f h = index.to_local(home);
+    const auto r2 = static_cast<float>(reach * reach);
+    const float* X = index.xs();
+    const float* Y = index.ys();
+    const float* Z = index.zs();
+    index.for_each_column_run(index.coords_of(h), 1, [&](const CubeIndex::Range& run) {
+        for (std::uint32_t j = run.begin; j < run.end; ++j) {
+            if (!keep(j)) continue;
+            const float dx = X[j] - h.x(), dy = Y[j] - h.y(), dz = Z[j] - h.z();
+            if (dx * dx + dy * dy + dz * dz <= r2) f(j);
+        }
+    });
+}
+
+/// Adjacency of patches: member points within `reach` of each other, or home points within the
+/// sum of the radii. Sorted, unique pairs (a < b); the same for any thread count. `used[s]`: the
+/// surface has member points.
+[[nodiscard]] std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_patch_pairs(
+    std::span<const Vec3f> points, std::span<const std::int32_t> labels,
+    std::span<const Surface> surfaces, const std::vector<std::uint8_t>& used, double reach,
+    int threads);
+
+}  // namespace surfgrow
