@@ -136,6 +136,11 @@ TEST(CubeIndex, CubesHoldTheirPointsContiguously) {
         for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
             EXPECT_EQ(index.coords_of(index.local_point(i)), index.cube_coords(c));
             EXPECT_EQ(index.cube_of(i), c);
+            // The ranged search, over a few cubes either side (as a slab's growing uses it).
+            const auto cc = static_cast<std::uint32_t>(c);
+            const auto last = static_cast<std::uint32_t>(std::min(c + 4, index.cube_count()));
+            EXPECT_EQ(index.cube_of(i, cc > 2 ? cc - 2 : 0, last), c);
+            EXPECT_EQ(index.cube_of(i, cc, cc + 1), c);
             // Sorted coordinates are the input's, less the origin.
             const Vec3d w = index.world_point(i);
             EXPECT_NEAR((w - pts[index.original_indices()[i]].cast<double>()).norm(), 0.0, 1e-6);

@@ -167,8 +167,8 @@ CubeIndex::CubeIndex(std::span<const Vec3f> points, double cube_size,
     original_ = std::move(index);
 }
 
-std::uint32_t CubeIndex::cube_of(std::uint32_t i) const {
-    const auto it = std::upper_bound(cube_start_.begin(), cube_start_.end() - 1, i);
+std::uint32_t CubeIndex::cube_of(std::uint32_t i, std::uint32_t first, std::uint32_t last) const {
+    const auto it = std::upper_bound(cube_start_.begin() + first, cube_start_.begin() + last, i);
     return static_cast<std::uint32_t>(it - cube_start_.begin() - 1);
 }
 

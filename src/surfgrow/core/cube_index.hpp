@@ -70,7 +70,12 @@ class CubeIndex {
     [[nodiscard]] std::uint32_t cube_end(std::size_t c) const { return cube_start_[c + 1]; }
     [[nodiscard]] Eigen::Vector3i cube_coords(std::size_t c) const { return decode(cube_keys_[c]); }
     /// The cube holding sorted point i (binary search).
-    [[nodiscard]] std::uint32_t cube_of(std::uint32_t i) const;
+    [[nodiscard]] std::uint32_t cube_of(std::uint32_t i) const {
+        return cube_of(i, 0, static_cast<std::uint32_t>(cube_count()));
+    }
+    /// The same, searching only the cubes [first, last), which must hold point i.
+    [[nodiscard]] std::uint32_t cube_of(std::uint32_t i, std::uint32_t first,
+                                        std::uint32_t last) const;
     /// The cube coordinates a local position falls in (may be outside the occupied cubes).
     [[nodiscard]] Eigen::Vector3i coords_of(const Vec3f& local) const;
 

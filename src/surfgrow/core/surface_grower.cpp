@@ -117,7 +117,6 @@ void unregister_points(std::span<const Range> runs, std::span<std::int32_t> labe
 struct Scratch {
     BulkVector<GrownSurface> grown;  // every slab this thread grew, one after another
     std::vector<std::uint32_t> order;
-    std::vector<std::uint32_t> cube_of;  // cube of each point of the slab, by position in slab
     std::vector<Range> table;
     std::vector<Range> runs;
     std::vector<Range> far_runs;  // the leftover pass's wider search, per cube
@@ -141,10 +140,6 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
     SplitMix64 rng(mix_seed(cfg.seed, slab_id));
     shuffle(std::span<std::uint32_t>(s.order), rng);
     index.neighbour_table(slab.cube_begin, slab.cube_end, s.table);
-    s.cube_of.resize(p_end - p_begin);
-    for (std::uint32_t c = slab.cube_begin; c < slab.cube_end; ++c)
-        std::fill(s.cube_of.begin() + (index.cube_begin(c) - p_begin),
-                  s.cube_of.begin() + (index.cube_end(c) - p_begin), c);
 
     const auto mu = static_cast<float>(cfg.mu);
     const double max_radius = cfg.max_radius();
@@ -154,7 +149,8 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
         if (ctx.labels[home] >= 0) continue;
         ++counters.tried;
         const Vec3f h = index.local_point(home);
-        const std::uint32_t cube = s.cube_of[home - p_begin];
+        // A binary search, not a per-point table: only the homes tried (a few %) need it.
+        const std::uint32_t cube = index.cube_of(home, slab.cube_begin, slab.cube_end);
         std::span<const Range> runs(&s.table[9 * (cube - slab.cube_begin)], 9);
         double radius = cfg.mu;
         Moments m = gather_moments(index, runs, h, mu);
@@ -412,7 +408,13 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         std::sort(order.begin(), order.end());
         for (std::size_t r = 0; r < order.size(); ++r) all[first[s] + r] = mine[order[r].second];
     }
-    for (Scratch& sc : scratch) release(sc.grown);
+    // The growing's buffers (a slab's worth each) are not needed again: free them before the
+    // pooling below, which is where small clouds reach their peak.
+    for (Scratch& sc : scratch) {
+        release(sc.grown);
+        release(sc.order);
+        release(sc.table);
+    }
     // Every label left after growing is the home of a kept surface (undone homes reset theirs):
     // relabel through a home-to-surface table, read only at those homes. Allocated after the
     // thread buffers are freed, so that it does not add to the peak.
