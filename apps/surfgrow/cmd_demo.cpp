@@ -9,6 +9,7 @@
 #include "grow_pipeline.hpp"
 #include "scan_job.hpp"
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/eval/plane_evaluation.hpp"
 #include "surfgrow/eval/report_text.hpp"
 
 namespace surfgrow::cli {
@@ -25,20 +26,14 @@ void add_demo_command(CLI::App& app) {
         bool quiet = false;
     };
     auto args = std::make_shared<Args>();
-    // Demo defaults (docs/evaluation.md, "The demo"): the paper's mu = 12 mm, and the adaptive
-    // radius for the sparse far ranges instead of a crop that would hide them.
-    args->grow.mu_max = "48mm";
+    // The demo runs the library's defaults (the paper's mu = 12 mm and the disk test with its
+    // adaptive radius), as a user's first `surfgrow grow` would.
     cmd->add_option("-o,--out", args->out,
                     "Output folder (scan/ inside it holds the simulated scan)")
         ->capture_default_str();
     cmd->add_option("--poses", args->poses, "Scans along the channel, 0.5 m apart")
         ->capture_default_str();
     args->grow.add_to(*cmd);
-    cmd->get_option("--mu-max")
-        ->description(
-            "Adaptive radius for sparse far points, up to this (demo default 48mm; "
-            "0mm turns it off)")
-        ->default_str(args->grow.mu_max);
     cmd->get_option("--seed")->description("Seed of the simulated noise and of the home points");
     args->eval.add_to(*cmd);
     cmd->add_flag("-q,--quiet", args->quiet, "Nothing on stdout");
@@ -61,8 +56,13 @@ void add_demo_command(CLI::App& app) {
         const GrowRun run =
             grow_and_write(data.cloud, config, out, OutputChoice{}, units, "scan/cloud.ply",
                            data.simulate_seconds + data.fuse_seconds);
-        const eval::EvalReport report =
+        eval::EvalReport report =
             eval::evaluate(data.cloud, run.result, data.scene->faces(), eval_options);
+        if (run.planes)
+            eval::add_plane_figures(
+                report, data.cloud,
+                eval::GrowOutcome{run.result.surfaces, run.result.labels, &run.result.stats},
+                *run.planes, data.scene->faces());
         const auto checks = eval::check_requirements(requirements, report);
         write_eval_json(out / "eval.json", report, checks);
         if (!args->quiet) {

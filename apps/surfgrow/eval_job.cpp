@@ -5,9 +5,11 @@
 #include "cli_common.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/eval/plane_evaluation.hpp"
 #include "surfgrow/eval/report_json.hpp"
 #include "surfgrow/io/atomic_output.hpp"
 #include "surfgrow/io/cloud_io.hpp"
+#include "surfgrow/io/planes_io.hpp"
 #include "surfgrow/io/results_io.hpp"
 #include "surfgrow/io/scene_file.hpp"
 #include "surfgrow/io/truth_faces_file.hpp"
@@ -97,7 +99,22 @@ eval::EvalReport evaluate_folder(const fs::path& result_dir, const Truth& truth,
         s.eigenvalues *= scale * scale;
     }
     const eval::GrowOutcome grown{result.surfaces, labels, &result.stats};
-    return eval::evaluate(truth.cloud, grown, truth.faces, options);
+    eval::EvalReport report = eval::evaluate(truth.cloud, grown, truth.faces, options);
+    // The bound planes too, where the result has them: normals are unit-free, and the planes
+    // name their member surfaces by id.
+    const fs::path planes_file = result_dir / "planes.json";
+    if (fs::exists(planes_file)) {
+        const io::StoredPlanes planes = io::read_planes_json(planes_file);
+        if (planes.planes.plane_of_patch.size() != result.surfaces.size())
+            throw Error(
+                ErrorCode::kInvalidParameter,
+                cat({planes_file.string(), ": planes of ",
+                     std::to_string(planes.planes.plane_of_patch.size()),
+                     " surfaces, but surfaces.json has ", std::to_string(result.surfaces.size()),
+                     ": not the planes of this result"}));
+        eval::add_plane_figures(report, truth.cloud, grown, planes.planes, truth.faces);
+    }
+    return report;
 }
 
 void write_eval_json(const fs::path& file, const eval::EvalReport& report,

@@ -12,12 +12,27 @@ void GrowOptions::add_to(CLI::App& cmd) {
         ->capture_default_str();
     cmd.add_option("--alpha", alpha, "Plane test: min(lambda) < mid(lambda)/alpha, alpha > 1")
         ->capture_default_str();
+    cmd.add_option("--plane-test", plane_test,
+                   "disk: eq. (2), and the points must span the ball and face the sensor, with "
+                   "best-fit registration within a noise-tied tolerance; paper: eq. (2) alone, "
+                   "first come, tolerance mu")
+        ->capture_default_str();
+    cmd.add_option("--min-spread", min_spread,
+                   "Disk test: mid(lambda) must reach this share of a disk's r^2/4")
+        ->capture_default_str();
+    cmd.add_option("--max-incidence", max_incidence,
+                   "Disk test: largest angle between a normal and the line of sight, degrees")
+        ->capture_default_str();
+    cmd.add_option("--noise-sigmas", noise_sigmas,
+                   "Disk test: register points within this many noise sigmas of the plane")
+        ->capture_default_str();
     cmd.add_option("--plane-tol", plane_tol,
-                   "Register points within this distance of the plane (default: mu)");
+                   "Register points within this distance of the plane, per mu of radius "
+                   "(default: noise-tied; mu with --plane-test paper)");
     cmd.add_option(
         "--mu-max", mu_max,
-        "Adaptive radius: double mu where points are too sparse, up to this length, or off "
-        "(default: 2 mu)");
+        "Adaptive radius: double mu where points are too sparse or not yet a plane, up to this "
+        "length, or off (default: 8 mu)");
     cmd.add_option("--min-new", min_new,
                    "A new surface must take at least this many unregistered points")
         ->capture_default_str();
@@ -57,6 +72,16 @@ GrowerConfig GrowOptions::config(const CloudUnits& u) const {
     c.mu = len(mu, "--mu");
     c.min_pts = min_pts;
     c.alpha = alpha;
+    if (plane_test == "disk")
+        c.plane_test = PlaneTest::kDisk;
+    else if (plane_test == "paper")
+        c.plane_test = PlaneTest::kPaper;
+    else
+        throw Error(ErrorCode::kUsage,
+                    "--plane-test: unknown test '" + plane_test + "' (use disk or paper)");
+    c.min_spread = min_spread;
+    c.max_incidence_deg = max_incidence;
+    c.noise_sigmas = noise_sigmas;
     if (!plane_tol.empty()) c.plane_tolerance = len(plane_tol, "--plane-tol");
     if (mu_max == "off")
         c.adaptive_factor = 1.0;

@@ -14,8 +14,12 @@ struct GrowOptions {
     std::string mu = "12mm";
     int min_pts = 10;
     double alpha = GrowerConfig{}.alpha;
+    std::string plane_test = "disk";
+    double min_spread = GrowerConfig{}.min_spread;
+    double max_incidence = GrowerConfig{}.max_incidence_deg;
+    double noise_sigmas = GrowerConfig{}.noise_sigmas;
     std::string plane_tol;  // empty: mu
-    std::string mu_max;     // empty: the library's default (2 mu); "off": mu
+    std::string mu_max;     // empty: the library's default (8 mu); "off": mu
     int min_new = 1;
     double pool_angle = GrowerConfig{}.pool_angle_deg;
     bool no_attach = false;

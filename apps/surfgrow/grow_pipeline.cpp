@@ -170,7 +170,8 @@ GrowRun grow_and_write(const PointCloud& cloud, const GrowerConfig& config,
         BoundPlaneConfig pc = *outputs.planes;
         pc.mu = config.mu;
         pc.threads = config.threads;
-        const BoundPlanes planes = compute_bound_planes(cloud, r.surfaces, r.labels, pc);
+        run.planes = compute_bound_planes(cloud, r.surfaces, r.labels, pc);
+        const BoundPlanes& planes = *run.planes;
         stage_planes(tx, planes, meta, outputs.planes_obj);
         run.robot.planes = planes_summary(planes, units.name);
         robot_seconds["planes"] = since(t1);

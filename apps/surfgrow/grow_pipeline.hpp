@@ -45,6 +45,7 @@ struct CloudUnits {
 
 struct GrowRun {
     GrowResult result;
+    std::optional<BoundPlanes> planes;  ///< when computed (OutputChoice::planes)
     RobotSummary robot;
     double read_seconds = 0.0;
     double write_seconds = 0.0;

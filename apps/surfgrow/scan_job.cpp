@@ -72,6 +72,16 @@ std::uint16_t range_mm(const std::string& text, const char* option) {
     return static_cast<std::uint16_t>(mm);
 }
 
+// The optical centre's height above the tilt axis, metres: "0" alone is accepted (no unit needed
+// for nothing), anything else needs its unit.
+double optical_offset_m(const std::string& text) {
+    if (text == "0") return 0.0;
+    const double m = parse_length_m(text, "--optical-offset");
+    if (!(std::abs(m) < 1.0))
+        invalid(cat({"--optical-offset ", text, " must be under 1 m in size"}));
+    return m;
+}
+
 std::string json_text(const nlohmann::json& j) {
     return j.dump(2) + "\n";
 }
@@ -80,7 +90,8 @@ std::string json_text(const nlohmann::json& j) {
 
 void ScanSettings::add_to(CLI::App& cmd) {
     cmd.add_option("--scene", scene,
-                   "Built-in scene (ibeam-channel, room-corner, pipes) or a scene file (.json)")
+                   "Built-in scene (ibeam-channel, room-corner, pipes, corridor, stairs) or a "
+                   "scene file (.json)")
         ->capture_default_str();
     cmd.add_option("--poses", poses,
                    "Number of scans along the scene's scan path, or a poses file (text or JSON)")
@@ -97,6 +108,15 @@ void ScanSettings::add_to(CLI::App& cmd) {
                    "Drop readings nearer than this when fusing (default: the laser's limit)");
     cmd.add_option("--max-range", max_range,
                    "Drop readings farther than this when fusing (default: the laser's limit)");
+    cmd.add_option("--optical-offset", optical_offset,
+                   "Laser optical centre above the tilt axis (0: on the axis, where all tilt "
+                   "positions meet one spot at pan +-90 deg)")
+        ->capture_default_str();
+    cmd.add_option("--pose-error", pose_error,
+                   "Sigma of a random error in each recorded scan position (e.g. 2mm): the cloud "
+                   "is fused with poses that are slightly wrong, as a robot's are");
+    cmd.add_option("--pose-error-angle", pose_error_deg,
+                   "Sigma of a random error in each recorded scan orientation, degrees");
 }
 
 scanner::FuseOptions fuse_options(int readings, int trim, const std::string& min_range,
@@ -127,7 +147,15 @@ ScanData run_scan(const ScanSettings& s) {
     scanner::ScannerSpec spec;
     spec.laser = scanner::laser_preset(s.laser);
     spec.readings_per_ray = s.readings;
+    spec.optical_offset_m = Vec3d(0, 0, optical_offset_m(s.optical_offset));
     spec.validate();
+    const double pose_sigma_m =
+        s.pose_error.empty() ? 0.0 : parse_length_m(s.pose_error, "--pose-error");
+    if (!(pose_sigma_m >= 0 && pose_sigma_m <= 0.5))
+        invalid(cat({"--pose-error ", s.pose_error, " must lie between 0 and 0.5 m"}));
+    if (!(s.pose_error_deg >= 0 && s.pose_error_deg <= 10))
+        invalid(cat(
+            {"--pose-error-angle ", num(s.pose_error_deg), " must lie between 0 and 10 degrees"}));
     const scanner::NoiseModel noise = noise_model(s.noise);
     d.fuse = fuse_options(s.readings, s.trim, s.min_range, s.max_range, spec.laser);
     d.scene = std::make_unique<scanner::Scene>(load_scene(s.scene));
@@ -137,6 +165,13 @@ ScanData run_scan(const ScanSettings& s) {
     const scanner::ScanSimulator simulator(*d.scene, spec, noise);
     for (scanner::SimulatedScan& sim : simulator.simulate(d.poses, s.seed))
         d.raws.push_back(std::move(sim.raw));
+    // Scanned from the true poses, fused with the recorded (slightly wrong) ones.
+    for (std::size_t k = 0; k < d.raws.size(); ++k) {
+        d.raws[k].pose =
+            scanner::perturb_pose(d.raws[k].pose, pose_sigma_m,
+                                  scanner::deg_to_rad(s.pose_error_deg), mix_seed(~s.seed, k));
+        d.poses[k] = d.raws[k].pose;
+    }
     d.simulate_seconds = since(t0);
     t0 = Clock::now();
     d.cloud = scanner::fuse_scans(d.raws, d.fuse);
@@ -169,6 +204,7 @@ void write_scan_outputs(const fs::path& dir, const ScanData& d, const ScanSettin
         {"trim_q", s.trim},
         {"laser", s.laser},
         {"noise", s.noise},
+        {"optical_offset_m", d.raws.empty() ? 0.0 : d.raws[0].spec.optical_offset_m.z()},
         {"range_mm",
          {d.fuse.min_range_mm ? d.fuse.min_range_mm : laser.min_range_mm,
           d.fuse.max_range_mm ? d.fuse.max_range_mm : laser.max_range_mm}},

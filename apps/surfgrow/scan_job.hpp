@@ -26,6 +26,9 @@ struct ScanSettings {
     std::string noise = "datasheet";  ///< "datasheet" or "ideal" (no noise, dropouts, mixed pixels)
     std::string min_range;            ///< fusing limits with unit; empty: the laser's own
     std::string max_range;
+    std::string optical_offset = "40mm";  ///< laser optical centre above the tilt axis
+    std::string pose_error;               ///< sigma of the recorded poses' translation error
+    double pose_error_deg = 0.0;          ///< sigma of the recorded poses' rotation error
 
     /// Registers the options on a subcommand (everything but the output folder).
     void add_to(CLI::App& cmd);

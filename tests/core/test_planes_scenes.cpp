@@ -86,10 +86,13 @@ TEST(PlanesOnScenes, RoomCornerGivesOnePlanePerWall) {
     check_coverage(r, 0.998);  // measured 0.9990
 }
 
-// The paper's fixed mu (no adaptive radius): the bounds below were measured on it.
+// The paper's loop: eq. (2) at a fixed mu (no adaptive radius); the bounds below were measured
+// on it.
 GrowerConfig fixed_mu() {
     GrowerConfig c;
+    c.plane_test = PlaneTest::kPaper;
     c.adaptive_factor = 1.0;
+    c.pool_radius = 2 * c.mu;
     return c;
 }
 
@@ -123,9 +126,9 @@ TEST(PlanesOnScenes, IBeamChannelSegmentsItsStructuralFaces) {
     check_coverage(r, 0.997);  // measured 0.9982
 }
 
-// With grow's defaults (adaptive radius up to 2 mu) the far, sparse faces register too: more
-// faces are scored (28 with 200+ points, against 25), and those far faces split more and share
-// their edge strips more often. Measured: 13 split, 8 planes holding 5 % of a second face, 15
+// With grow's defaults (the disk test, adaptive radius up to 8 mu) the far, sparse faces register
+// too: more faces are scored (28 with 200+ points, against 25), and those far faces split more and
+// share their edge strips more often. Measured: 13 split, 8 planes holding 5 % of a second face, 15
 // one-to-one; against pieces 8 split. The near faces and the three largest planes are as good.
 TEST(PlanesOnScenes, IBeamChannelWithTheDefaultAdaptiveRadius) {
     const SceneRun r = run("ibeam-channel");

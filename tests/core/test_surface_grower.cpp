@@ -56,8 +56,9 @@ void check_invariants(const PointCloud& cloud, const GrowerConfig& cfg, const Gr
     EXPECT_EQ(st.surfaces, r.surfaces.size());
     EXPECT_LE(st.registered_grown, st.registered);
     EXPECT_EQ(st.valid_points, st.registered + st.noise_points);
-    EXPECT_EQ(st.homes_tried,
-              st.surfaces + st.rejected_sparse + st.rejected_nonplanar + st.rejected_covered);
+    EXPECT_EQ(st.homes_tried, st.surfaces + st.dropped_surfaces + st.rejected_sparse +
+                                  st.rejected_nonplanar + st.rejected_covered);
+    EXPECT_LE(st.lone_surfaces, st.dropped_surfaces);
     std::vector<std::uint32_t> count(r.surfaces.size(), 0);
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         const int32_t l = r.labels[i];
@@ -66,9 +67,13 @@ void check_invariants(const PointCloud& cloud, const GrowerConfig& cfg, const Gr
         const Surface& s = r.surfaces[static_cast<std::size_t>(l)];
         const Vec3d p = cloud.points[i].cast<double>();
         ++count[static_cast<std::size_t>(l)];
-        // Registered within the plane tolerance (scaled with an adapted radius) ...
-        const double tol = cfg.tolerance() * s.radius / cfg.mu;
-        EXPECT_LE(std::abs(s.plane().signed_distance(p)), tol * (1 + 1e-5) + 1e-6);
+        // Registered within the surface's plane tolerance: the user's, scaled with an adapted
+        // radius; or a few noise sigmas, never above the radius ...
+        if (cfg.tolerance() > 0) {
+            EXPECT_NEAR(s.tolerance, cfg.tolerance() * s.radius / cfg.mu, 1e-6 * s.radius);
+        }
+        EXPECT_LE(s.tolerance, s.radius * (1 + 1e-6));
+        EXPECT_LE(std::abs(s.plane().signed_distance(p)), s.tolerance * (1 + 1e-5) + 1e-6);
         // ... and near the home point: within its radius, or a neighbour's reach for leftovers.
         EXPECT_LE((p - s.home).norm(), s.radius + cfg.max_radius() + 1e-6);
         EXPECT_TRUE((p.array() >= s.bounds.min.array() - 1e-6).all() &&

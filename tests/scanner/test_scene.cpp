@@ -198,7 +198,7 @@ TEST(Scene, BadPrimitivesAreInvalidParameters) {
 }
 
 TEST(BuiltinScenes, AllBuildWithTheirFaceCounts) {
-    EXPECT_EQ(builtin_scene_names().size(), 3u);
+    EXPECT_EQ(builtin_scene_names().size(), 5u);
     for (const std::string& name : builtin_scene_names()) {
         const Scene s(builtin_scene(name));
         EXPECT_EQ(s.description().name, name);
@@ -209,6 +209,8 @@ TEST(BuiltinScenes, AllBuildWithTheirFaceCounts) {
               1u + 6u + 6u * 6u + 8u * 6u + 2u * 6u + 24u * 3u);
     EXPECT_EQ(Scene(room_corner_scene()).primitive_count(), 3u);
     EXPECT_EQ(Scene(pipes_scene()).primitive_count(), 14u);
+    EXPECT_EQ(Scene(corridor_scene()).primitive_count(), 9u);
+    EXPECT_EQ(Scene(stairs_scene()).primitive_count(), 13u);
     try {
         (void)builtin_scene("bridge");
         FAIL();
@@ -216,6 +218,41 @@ TEST(BuiltinScenes, AllBuildWithTheirFaceCounts) {
         EXPECT_EQ(e.code(), ErrorCode::kInvalidParameter);
         EXPECT_NE(std::string(e.what()).find("ibeam-channel"), std::string::npos);
     }
+}
+
+TEST(BuiltinScenes, TheCorridorHasWallsAtBothPolesOfTheTiltAxisAndAFarEndWall) {
+    const SceneDescription d = corridor_scene();
+    const Scene s(d);
+    const Vec3d o = d.scanner.home.translation();
+    // The tilt axis is the sensor's y: along it, each side wall 1 m away, hit head-on.
+    const Vec3d axis = d.scanner.home.linear() * Vec3d::UnitY();
+    for (const double side : {1.0, -1.0}) {
+        const Hit h = must_hit(s, o, side * axis);
+        EXPECT_NEAR(h.t, 1.0, 1e-9);
+        EXPECT_NEAR(std::abs(h.normal.dot(axis)), 1.0, 1e-9);
+    }
+    // Straight ahead: the end wall at 3.5 m, inside the URG's 4 m.
+    const Vec3d ahead = d.scanner.home.linear() * Vec3d::UnitX();
+    EXPECT_NEAR(must_hit(s, o, ahead).t, 3.5, 1e-9);
+}
+
+TEST(BuiltinScenes, TheStairsHaveTreadsAndRisersAndASideWallAtThePole) {
+    const SceneDescription d = stairs_scene();
+    const Scene s(d);
+    const Vec3d o = d.scanner.home.translation();
+    const Vec3d axis = d.scanner.home.linear() * Vec3d::UnitY();
+    EXPECT_NEAR(must_hit(s, o, axis).t, 0.9, 1e-9);  // the side wall, at the pole
+    // Looking down the flight: a riser (normal -x) or a tread (normal +z), never anything else.
+    int risers = 0, treads = 0;
+    for (double x = 1.05; x < 2.6; x += 0.07) {
+        const Hit h = must_hit(s, Vec3d(x, 0, 2.5), Vec3d(0.3, 0, -1).normalized());
+        risers += h.normal.isApprox(-Vec3d::UnitX(), 1e-9) ? 1 : 0;
+        treads += h.normal.isApprox(Vec3d::UnitZ(), 1e-9) ? 1 : 0;
+        EXPECT_TRUE(h.normal.isApprox(-Vec3d::UnitX(), 1e-9) ||
+                    h.normal.isApprox(Vec3d::UnitZ(), 1e-9));
+    }
+    EXPECT_GT(risers, 0);
+    EXPECT_GT(treads, 0);
 }
 
 TEST(BuiltinScenes, IBeamChannelHasRealisticDimensionsAndAScannerInTheChannel) {

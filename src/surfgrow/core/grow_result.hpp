@@ -48,11 +48,17 @@ struct GrowStats {
     std::uint64_t rejected_nonplanar = 0;  ///< homes whose neighbourhood failed the plane test
     std::uint64_t adapted_surfaces = 0;    ///< surfaces grown with a radius above mu
     std::uint64_t released_by_refinement = 0;  ///< members beyond the tolerance of a refined plane
+    std::uint64_t dropped_surfaces = 0;        ///< grown, then dropped: emptied or lone (kDisk)
+    std::uint64_t lone_surfaces = 0;           ///< of those, in no plane with any neighbour
     std::uint64_t noise_points = 0;            ///< valid points left unregistered
     OrientationSource orientation = OrientationSource::kUp;
     bool range_known = false;            ///< whether range bands could be measured
     Vec3d range_origin = Vec3d::Zero();  ///< where ranges are measured from (single origin)
     std::vector<RangeBand> range_bands;
+    /// The measured noise (plane thickness sigma) by range band of width noise_band from the
+    /// sensor, or one value for all ranges (noise_band 0); empty with the paper's plane test.
+    std::vector<double> noise_sigma;
+    double noise_band = 0.0;
     StageTimes seconds;
 
     [[nodiscard]] double registered_fraction() const {

@@ -1,6 +1,8 @@
 // Principal component analysis of a neighbourhood: the plane test of paper eq. (2).
 #pragma once
 
+#include <algorithm>
+
 #include "surfgrow/core/geometry.hpp"
 #include "surfgrow/core/symmetric_eigen.hpp"
 
@@ -39,6 +41,22 @@ struct PlaneFit {
 [[nodiscard]] inline PlaneFit fit_plane(const Moments& m) {
     const SymmetricEigen3 e = symmetric_eigen(covariance(m));
     return {m.sum / m.n, e.smallest_vector, e.values.cwiseMax(0.0)};  // rounding can dip below 0
+}
+
+/// A unit eigenvector of symmetric `a` for its eigenvalue `value`: the longest cross product of
+/// two rows of a - value I (they span the orthogonal complement). Any unit vector orthogonal to
+/// `orthogonal_to` when the eigenvalue is repeated.
+[[nodiscard]] inline Vec3d eigenvector_of(const Mat3d& a, double value,
+                                          const Vec3d& orthogonal_to) {
+    const Mat3d b = a - value * Mat3d::Identity();
+    const Vec3d c[3] = {b.row(0).cross(b.row(1)), b.row(0).cross(b.row(2)),
+                        b.row(1).cross(b.row(2))};
+    const Vec3d* best = &c[0];
+    for (const Vec3d& v : c)
+        if (v.squaredNorm() > best->squaredNorm()) best = &v;
+    if (best->squaredNorm() > 1e-24 * std::max(b.squaredNorm() * b.squaredNorm(), 1e-300))
+        return best->normalized();
+    return orthogonal_to.unitOrthogonal();
 }
 
 /// True when the cubic's eigenvalues already show, with a margin far above their error, that the

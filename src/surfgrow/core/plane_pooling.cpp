@@ -31,6 +31,13 @@ struct Candidate {
 }  // namespace
 
 std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const PoolingConfig& cfg) {
+    std::vector<std::uint8_t> lone;
+    return pool_normals(patches, cfg, lone, 0);
+}
+
+std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const PoolingConfig& cfg,
+                                std::vector<std::uint8_t>& lone, int min_neighbours) {
+    lone.assign(min_neighbours > 0 ? patches.size() : 0, 0);
     std::vector<Vec3d> out;
     reserve_bulk(out, patches.size());
     out.resize(patches.size());
@@ -60,17 +67,20 @@ std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const Po
             const Candidate& a = cand[s];
             const Vec3f q = index.local_point(s);
             Moments pooled = a.moments;
+            int near = 0, coplanar = 0;
             for (int r = 0; r < 9; ++r) {
                 const CubeIndex::Range run = table[9 * c + static_cast<std::size_t>(r)];
                 for (std::uint32_t t = run.begin; t < run.end; ++t) {
                     if (t == s || (index.local_point(t) - q).squaredNorm() > r2) continue;
                     const Candidate& b = cand[t];
+                    ++near;
                     if (std::abs(a.normal.dot(b.normal)) < cos_max) continue;
                     const double offset = std::clamp(3.0 * std::max(a.sigma, b.sigma),
                                                      cfg.min_offset, cfg.max_offset);
                     const Vec3d d = b.centroid - a.centroid;
                     if (std::abs(a.normal.dot(d)) > offset || std::abs(b.normal.dot(d)) > offset)
                         continue;
+                    ++coplanar;
                     pooled.n += b.moments.n;
                     pooled.sum += b.moments.sum;
                     pooled.sum_sq += b.moments.sum_sq;
@@ -79,6 +89,7 @@ std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const Po
             Vec3d n = fit_plane(pooled).normal;
             if (n.dot(a.normal) < 0) n = -n;
             out[orig[s]] = n;
+            if (min_neighbours > 0 && coplanar == 0 && near >= min_neighbours) lone[orig[s]] = 1;
         }
     }
     return out;

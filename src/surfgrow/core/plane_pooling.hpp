@@ -1,6 +1,7 @@
 // Refining patch normals by pooling the moments of adjacent coplanar patches.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -34,5 +35,12 @@ struct PoolingConfig {
 /// with the sign of the patch's own normal. Deterministic for any thread count.
 [[nodiscard]] std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches,
                                               const PoolingConfig& config);
+
+/// The same; `lone[k]` is set to 1 where patch k has at least `min_neighbours` patches within the
+/// radius but none in its plane: a patch that disagrees with everything around it, such as a fit
+/// tilted across an edge or a depth edge's mixed pixels.
+[[nodiscard]] std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches,
+                                              const PoolingConfig& config,
+                                              std::vector<std::uint8_t>& lone, int min_neighbours);
 
 }  // namespace surfgrow

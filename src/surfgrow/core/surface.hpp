@@ -18,6 +18,7 @@ struct Surface {
     std::uint32_t neighbours = 0;       ///< points within `radius` of the home point (PCA support)
     std::uint32_t point_count = 0;      ///< member points (registered to this surface)
     double mean_residual = 0.0;         ///< mean |distance| of members to the plane
+    double tolerance = 0.0;             ///< largest distance from the plane of a member
     Aabb bounds;                        ///< bounding box of the members
 
     /// Plane offset d in n.x + d = 0.

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -16,6 +17,7 @@
 #include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/neighbourhood.hpp"
+#include "surfgrow/core/noise_profile.hpp"
 #include "surfgrow/core/plane_pooling.hpp"
 #include "surfgrow/core/random.hpp"
 #include "surfgrow/core/text.hpp"
@@ -40,6 +42,15 @@ void validate(const GrowerConfig& c) {
     if (!(c.adaptive_factor >= 1 && c.adaptive_factor <= 64))
         fail({"the adaptive radius (mu-max) must be between mu (off) and 64 mu, got ",
               num(c.adaptive_factor), " mu"});
+    if (!(c.min_spread >= 0 && c.min_spread <= 1))
+        fail({"min-spread must lie in [0, 1] (a share of a disk's spread), got ",
+              num(c.min_spread)});
+    if (!(c.max_incidence_deg > 0 && c.max_incidence_deg <= 90))
+        fail({"max-incidence must lie in (0, 90] degrees, got ", num(c.max_incidence_deg)});
+    if (!(c.thickness_sigmas >= 1 && c.thickness_sigmas <= 100))
+        fail({"thickness-sigmas must lie in [1, 100], got ", num(c.thickness_sigmas)});
+    if (!(c.noise_sigmas >= 1 && c.noise_sigmas <= 100))
+        fail({"noise-sigmas must lie in [1, 100], got ", num(c.noise_sigmas)});
     if (c.threads < 0) fail({"threads must be >= 0 (0 = all cores), got ", num(c.threads)});
     if (!(c.range_band > 0) || !std::isfinite(c.range_band))
         fail({"range band must be a positive length, got ", num(c.range_band)});
@@ -57,6 +68,22 @@ constexpr std::size_t kMaxRangeBands = 1024;
 // The frame origin counts as the sensor if it lies within this many box diagonals of the points.
 constexpr double kFrameOriginReach = 10.0;
 using Range = CubeIndex::Range;
+// The noise profile: this many sample neighbourhoods, in range bands of this many mu, and no
+// sigma below mu / kNoiseFloorPerMu (float coordinates and 1 mm range steps at mu = 12 mm).
+constexpr std::size_t kNoiseSamples = 1536;
+constexpr double kNoiseBandPerMu = 25.0;
+constexpr double kNoiseFloorPerMu = 24.0;
+// The normals of a neighbourhood's two halves may differ by at most this (degrees).
+constexpr double kSplitAngleDeg = 20.0;
+// A leftover beside surfaces that it does not fit looks for others up to this many mu away; the
+// wider searches double their radius at most this many times (the adaptive radius's 64 mu).
+constexpr double kMissRadiusPerMu = 2.0;
+constexpr std::size_t kFarLevels = 7;
+// A patch with at least this many patches around it, none of them in its plane, is dropped.
+constexpr int kLoneNeighbours = 3;
+// A neighbourhood that fails eq. (2) is given a larger ball only while its thickness is that of
+// the noise (at most this many sigmas): noise-limited far surfaces, not edges or steps.
+constexpr double kGrowSigmas = 1.5;
 
 double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -96,6 +123,7 @@ std::vector<Slab> partition_slabs(const CubeIndex& index, int min_width,
 struct GrownSurface {
     std::uint32_t home = 0;
     float radius = 0;
+    float tolerance = 0;  // registration tolerance
     std::uint32_t neighbours = 0;
     PlaneFit fit;     // centroid relative to the home point, local frame
     Moments moments;  // about the home point, for normal pooling
@@ -105,12 +133,18 @@ struct SlabCounters {
     std::uint64_t tried = 0, sparse = 0, nonplanar = 0, covered = 0, adapted = 0;
 };
 
-/// Undoes register_points for one home: its label back to "unregistered" wherever it was set.
+/// Undoes register_points for one home: its label back to "unregistered" wherever it was set,
+/// and the points it took from other surfaces back to them.
 void unregister_points(std::span<const Range> runs, std::span<std::int32_t> labels,
-                       std::int32_t label) {
+                       std::span<float> distance, std::int32_t label,
+                       std::span<const TakenPoint> taken) {
     for (const Range& run : runs)
         for (std::uint32_t j = run.begin; j < run.end; ++j)
             if (labels[j] == label) labels[j] = -1;
+    for (const TakenPoint& t : taken) {
+        labels[t.point] = t.label;
+        distance[t.point] = t.distance;
+    }
 }
 
 /// Per-thread scratch reused across slabs: no allocation per home point.
@@ -119,14 +153,220 @@ struct Scratch {
     std::vector<std::uint32_t> order;
     std::vector<Range> table;
     std::vector<Range> runs;
-    std::vector<Range> far_runs;  // the leftover pass's wider search, per cube
+    std::array<std::vector<Range>, kFarLevels> far_runs;  // the leftover pass's wider searches
+    std::vector<TakenPoint> taken;
+};
+
+/// Where the sensor stood for each point, in the index's local frame (kDisk's grazing test).
+struct SensorSight {
+    std::vector<Vec3f> origins;  // local; empty: unknown
+    // The grazing test needs a sensor the cloud or the user names (scan origins, a viewpoint):
+    // a frame origin is only a guess, and a map-frame cloud has it on its floor.
+    bool named = false;
+    std::span<const std::uint32_t> scan_index;  // input order; empty: origins[0] for all
+    std::span<const std::uint32_t> original;    // sorted index -> input index
+
+    /// Direction from the sensor to sorted point `i` at local position `p`; zero when unknown.
+    [[nodiscard]] Vec3d towards(std::uint32_t i, const Vec3f& p) const {
+        if (origins.empty()) return Vec3d::Zero();
+        std::uint32_t o = 0;
+        if (!scan_index.empty()) {
+            o = scan_index[original[i]];
+            if (o >= origins.size()) o = 0;
+        }
+        return (p - origins[o]).cast<double>();
+    }
 };
 
 struct GrowContext {
     const CubeIndex& index;
     const GrowerConfig& config;
     std::span<std::int32_t> labels;  // sorted order; during growing: the home's sorted index
+    std::span<float> distance;       // sorted order: a registered point's distance to its plane
+    const SensorSight& sight;
+    const NoiseProfile& noise;  // measured plane thickness by range (kDisk); may be unknown
 };
+
+/// A home point's neighbourhood at the radius where the search stopped.
+struct Neighbourhood {
+    PlaneVerdict verdict = PlaneVerdict::kThick;
+    double radius = 0;
+    double range = -1;  // from the sensor; < 0: unknown
+    Moments moments;
+    PlaneFit fit;
+    std::span<const Range> runs;  // the cube runs that cover the ball
+    double tolerance = 0;         // registration tolerance (accepted neighbourhoods)
+};
+
+/// The registration tolerance of an accepted neighbourhood: the user's, per mu of radius; or a few
+/// sigmas of the noise measured at its range (its own thickness while the noise is measured),
+/// never less than the coordinates' rounding needs, never more than the radius.
+double tolerance_of(const GrowContext& ctx, const Neighbourhood& nb) {
+    const GrowerConfig& cfg = ctx.config;
+    if (cfg.tolerance() > 0) return cfg.tolerance() * nb.radius / cfg.mu;
+    const double sigma = ctx.noise.known() ? ctx.noise.sigma(std::max(nb.range, 0.0))
+                                           : std::sqrt(nb.fit.eigenvalues[0]);
+    return std::clamp(cfg.noise_sigmas * sigma, cfg.mu / 6, nb.radius);
+}
+
+/// The disk test's last look at an accepted neighbourhood, in one pass over its inliers (the
+/// points within its tolerance of its plane). Whether its two halves, split across each in-plane
+/// principal axis at the centroid, lie in one plane: an edge or a depth edge's mixed pixels seen
+/// at a small scale can look as thin as noise (an L of two short arms fitted by its diagonal), but
+/// its halves are the two arms. Halves that are lines or hold fewer than 3 points say nothing.
+/// Where they agree, the plane is refitted on the inliers, so that the few points of a
+/// neighbouring face an edge patch holds no longer tilt it.
+bool check_and_refit(const GrowContext& ctx, std::uint32_t home, const Vec3f& h,
+                     Neighbourhood& nb) {
+    const Vec3d& n = nb.fit.normal;
+    const Vec3d e1 = eigenvector_of(covariance(nb.moments), nb.fit.eigenvalues[1], n);
+    const Vec3d u = (e1 - e1.dot(n) * n).normalized();
+    const Vec3d v = n.cross(u);
+    const Vec3d& c = nb.fit.centroid;
+    const FrameSums f = gather_frame_sums(ctx.index, nb.runs, h, static_cast<float>(nb.radius),
+                                          c.cast<float>(), u.cast<float>(), v.cast<float>(),
+                                          n.cast<float>(), static_cast<float>(nb.tolerance));
+    // The noise variance along the normal: measured, or the neighbourhood's own.
+    const double noise_var = ctx.noise.known()
+                                 ? std::pow(ctx.noise.sigma(std::max(nb.range, 0.0)), 2)
+                                 : nb.fit.eigenvalues[0];
+    // Each half's plane as a regression of r on (u, v): a 2x2 solve from its sums.
+    for (int a = 0; a < 2; ++a) {
+        Vec3d half_normal[2];
+        double wander = 0;
+        bool usable = true;
+        for (int k = 0; k < 2 && usable; ++k) {
+            const double sign = k == 0 ? 1.0 : -1.0;
+            double m[9];  // 1, u, v, r, uu, uv, ur, vv, vr of this half
+            for (int t = 0; t < 9; ++t) m[t] = 0.5 * (f.all[t] + sign * f.signed_by[a][t]);
+            const double cnt = m[0];
+            if (cnt < 3) {
+                usable = false;
+                break;
+            }
+            const double mu_ = m[1] / cnt, mv = m[2] / cnt, mr = m[3] / cnt;
+            const double cuu = m[4] / cnt - mu_ * mu_, cuv = m[5] / cnt - mu_ * mv;
+            const double cur = m[6] / cnt - mu_ * mr, cvv = m[7] / cnt - mv * mv;
+            const double cvr = m[8] / cnt - mv * mr;
+            const double det = cuu * cvv - cuv * cuv;
+            if (!(det > 1e-12 * cuu * cvv) || !(std::min(cuu, cvv) > 0)) {
+                usable = false;  // a line: its tilt across itself is undefined
+                break;
+            }
+            const double gu = (cvv * cur - cuv * cvr) / det;
+            const double gv = (cuu * cvr - cuv * cur) / det;
+            half_normal[k] = (n - gu * u - gv * v).normalized();
+            // A half's normal wanders by about sigma / sqrt(n * spread) radians.
+            wander += noise_var * std::max(cuu, cvv) / (cnt * det);
+        }
+        if (!usable) continue;
+        // The limit: kSplitAngleDeg, or three wanders combined, whichever is larger.
+        const double limit = std::max(kSplitAngleDeg * M_PI / 180.0, 3 * std::sqrt(wander));
+        if (limit >= M_PI / 2) continue;
+        if (std::abs(half_normal[0].dot(half_normal[1])) < std::cos(limit)) return false;
+    }
+    // The inliers' moments about home, from their sums in the plane's frame.
+    const double cnt = f.all[0];
+    if (cnt >= ctx.config.min_pts) {
+        Mat3d r;
+        r.col(0) = u;
+        r.col(1) = v;
+        r.col(2) = n;
+        const Vec3d sq(f.all[1], f.all[2], f.all[3]);
+        Mat3d qq;
+        qq << f.all[4], f.all[5], f.all[6], f.all[5], f.all[7], f.all[8], f.all[6], f.all[8],
+            f.all[9];
+        Moments inliers;
+        inliers.n = cnt;
+        const Vec3d rs = r * sq;
+        inliers.sum = cnt * c + rs;
+        inliers.sum_sq = cnt * c * c.transpose() + c * rs.transpose() + rs * c.transpose() +
+                         r * qq * r.transpose();
+        // The refit must pass the same test (it reports these eigenvalues).
+        const PlaneFit refit = fit_plane(inliers);
+        if (judge_plane(ctx.config.plane_test, ctx.config.disk_test(), refit.eigenvalues,
+                        refit.normal, nb.radius,
+                        ctx.sight.named ? ctx.sight.towards(home, h) : Vec3d::Zero()) ==
+            PlaneVerdict::kPlane) {
+            nb.fit = refit;
+            nb.moments = inliers;
+        }
+    }
+    return true;
+}
+
+/// Fits the neighbourhood of sorted point `home` in cube `cube`, whose 27 cubes are `runs27`.
+/// kPaper: eq. (2) at mu, or at the adaptive radius if mu holds fewer than min_pts points. kDisk:
+/// the radius doubles while the neighbourhood fails the relative tests (too few points, eq. (2),
+/// spread, grazing), and the search stops at once where the neighbourhood is thicker than
+/// `thickness_sigmas` noise sigmas at its range (an edge, a step, a corner: growing cannot help).
+/// Without a known noise profile that limit is not applied (the profile's own sampling).
+Neighbourhood fit_neighbourhood(const GrowContext& ctx, std::uint32_t home, const Vec3f& h,
+                                std::uint32_t cube, std::span<const Range> runs27,
+                                std::vector<Range>& wide_runs) {
+    const CubeIndex& index = ctx.index;
+    const GrowerConfig& cfg = ctx.config;
+    const bool disk = cfg.plane_test == PlaneTest::kDisk;
+    const Vec3d towards = ctx.sight.towards(home, h);
+    const Vec3d sight = disk && ctx.sight.named ? towards : Vec3d::Zero();  // for the grazing test
+    Neighbourhood nb;
+    nb.range = ctx.sight.origins.empty() ? -1.0 : towards.norm();
+    // Thickness limits: to be a plane at all, and to be worth a larger ball after failing
+    // eq. (2) (noise thins out as the ball grows; an edge or a step does not).
+    double max_var = std::numeric_limits<double>::infinity(), grow_var = max_var;
+    if (disk && ctx.noise.known()) {
+        const double sigma = ctx.noise.sigma(std::max(nb.range, 0.0));
+        max_var = cfg.thickness_sigmas * cfg.thickness_sigmas * sigma * sigma;
+        grow_var = kGrowSigmas * kGrowSigmas * sigma * sigma;
+    }
+    const DiskTest test = cfg.disk_test();
+    nb.radius = cfg.mu;
+    nb.runs = runs27;
+    nb.moments = gather_moments(index, nb.runs, h, static_cast<float>(cfg.mu));
+    for (;;) {
+        const Moments& m = nb.moments;
+        if (m.n >= cfg.min_pts) {
+            // Most edge and clutter neighbourhoods fail eq. (2) plainly: the cubic's eigenvalues
+            // say so at a third of the full solve's cost.
+            const Vec3d rough = rough_eigenvalues(covariance(m));
+            if (rough[0] * cfg.alpha > rough[1] * (1 + 1e-6) + 1e-6 * rough[2]) {
+                nb.verdict = PlaneVerdict::kThick;
+                // Only a full disk as thick as the noise thins out in a larger ball; a thicker
+                // one is an edge or a step, a partial one a boundary or a corner.
+                if (!disk || rough[0] > grow_var ||
+                    rough[1] < cfg.min_spread * disk_variance(nb.radius))
+                    return nb;
+            } else {
+                nb.fit = fit_plane(m);
+                nb.verdict = judge_plane(cfg.plane_test, test, nb.fit.eigenvalues, nb.fit.normal,
+                                         nb.radius, sight);
+                if (nb.fit.eigenvalues[0] > max_var) {
+                    nb.verdict = PlaneVerdict::kThick;
+                    return nb;
+                }
+                if (nb.verdict == PlaneVerdict::kPlane) {
+                    nb.tolerance = tolerance_of(ctx, nb);
+                    if (disk && !check_and_refit(ctx, home, h, nb))
+                        nb.verdict = PlaneVerdict::kKinked;
+                }
+                if (nb.verdict == PlaneVerdict::kPlane || nb.verdict == PlaneVerdict::kKinked)
+                    return nb;
+                if (nb.verdict == PlaneVerdict::kThick && nb.fit.eigenvalues[0] > grow_var)
+                    return nb;
+            }
+            // The paper's test keeps the radius of any neighbourhood with min_pts points.
+            if (!disk) return nb;
+        }
+        if (nb.radius >= cfg.max_radius()) return nb;
+        // Adaptive radius: double it while the support is too thin, up to the maximum.
+        nb.radius = std::min(2.0 * nb.radius, cfg.max_radius());
+        wide_runs.clear();
+        index.column_ranges(index.cube_coords(cube),
+                            static_cast<int>(std::ceil(nb.radius / index.cube_size())), wide_runs);
+        nb.runs = wide_runs;
+        nb.moments = gather_moments(index, nb.runs, h, static_cast<float>(nb.radius));
+    }
+}
 
 /// Grows every home point of one slab, in a random order drawn from the slab's own stream.
 void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Scratch& s,
@@ -141,9 +381,7 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
     shuffle(std::span<std::uint32_t>(s.order), rng);
     index.neighbour_table(slab.cube_begin, slab.cube_end, s.table);
 
-    const auto mu = static_cast<float>(cfg.mu);
-    const double max_radius = cfg.max_radius();
-    const double tol_per_radius = cfg.tolerance() / cfg.mu;
+    const bool disk = cfg.plane_test == PlaneTest::kDisk;
     const auto min_new = static_cast<std::uint32_t>(std::max(1, cfg.min_new_points));
     for (const std::uint32_t home : s.order) {
         if (ctx.labels[home] >= 0) continue;
@@ -151,48 +389,76 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
         const Vec3f h = index.local_point(home);
         // A binary search, not a per-point table: only the homes tried (a few %) need it.
         const std::uint32_t cube = index.cube_of(home, slab.cube_begin, slab.cube_end);
-        std::span<const Range> runs(&s.table[9 * (cube - slab.cube_begin)], 9);
-        double radius = cfg.mu;
-        Moments m = gather_moments(index, runs, h, mu);
-        // Adaptive radius: double it while the support is too thin, up to the adaptive maximum.
-        while (m.n < cfg.min_pts && radius < max_radius) {
-            radius = std::min(2.0 * radius, max_radius);
-            s.runs.clear();
-            index.column_ranges(index.cube_coords(cube),
-                                static_cast<int>(std::ceil(radius / index.cube_size())), s.runs);
-            runs = s.runs;
-            m = gather_moments(index, runs, h, static_cast<float>(radius));
-        }
-        if (m.n < cfg.min_pts) {
+        Neighbourhood nb = fit_neighbourhood(
+            ctx, home, h, cube, std::span<const Range>(&s.table[9 * (cube - slab.cube_begin)], 9),
+            s.runs);
+        if (nb.moments.n < cfg.min_pts) {
             ++counters.sparse;
             continue;
         }
-        // Most edge and clutter neighbourhoods fail eq. (2) plainly: the cubic's eigenvalues say so
-        // at a third of the full solve's cost.
-        if (clearly_not_planar(m, cfg.alpha)) {
+        if (nb.verdict != PlaneVerdict::kPlane) {
             ++counters.nonplanar;
             continue;
         }
-        const PlaneFit fit = fit_plane(m);
-        if (!is_planar(fit.eigenvalues, cfg.alpha)) {
-            ++counters.nonplanar;
-            continue;
+        const double radius = nb.radius;
+        const double tol = nb.tolerance;
+        const PlaneFit& fit = nb.fit;
+        const auto label = static_cast<std::int32_t>(home);
+        std::uint32_t registered = 0;
+        s.taken.clear();
+        if (disk) {
+            registered = register_best_fit(index, nb.runs, h, static_cast<float>(radius),
+                                           fit.normal.cast<float>(), fit.centroid.cast<float>(),
+                                           static_cast<float>(tol), ctx.labels, ctx.distance, label,
+                                           s.taken);
+        } else {
+            registered = register_points(index, nb.runs, h, static_cast<float>(radius),
+                                         fit.normal.cast<float>(), fit.centroid.cast<float>(),
+                                         static_cast<float>(tol), ctx.labels, label);
         }
-        const auto tol = static_cast<float>(tol_per_radius * radius);
-        const std::uint32_t registered = register_points(
-            index, runs, h, static_cast<float>(radius), fit.normal.cast<float>(),
-            fit.centroid.cast<float>(), tol, ctx.labels, static_cast<std::int32_t>(home));
         if (registered < min_new) {
             // The home sits in a gap between earlier surfaces: a new surface would duplicate
             // them. Undo; the leftover pass gives these points to the surface they fit best.
-            if (registered > 0)
-                unregister_points(runs, ctx.labels, static_cast<std::int32_t>(home));
+            if (registered > 0 || !s.taken.empty())
+                unregister_points(nb.runs, ctx.labels, ctx.distance, label, s.taken);
             ++counters.covered;
             continue;
         }
         if (radius > cfg.mu) ++counters.adapted;
-        out.push_back({home, static_cast<float>(radius), static_cast<std::uint32_t>(m.n), fit, m});
+        out.push_back({home, static_cast<float>(radius), static_cast<float>(tol),
+                       static_cast<std::uint32_t>(nb.moments.n), fit, nb.moments});
     }
+}
+
+/// The noise profile of the cloud: the thickness of neighbourhoods around evenly spread sample
+/// points that pass the relative tests (no thickness limit yet), by range. Deterministic: the
+/// samples depend on the index alone.
+NoiseProfile measure_noise(const GrowContext& ctx, int threads) {
+    const CubeIndex& index = ctx.index;
+    const std::size_t n = index.size();
+    const std::size_t count = std::min<std::size_t>(n, kNoiseSamples);
+    std::vector<ThicknessSample> samples(count);
+    std::vector<std::uint8_t> ok(count, 0);
+#pragma omp parallel num_threads(threads)
+    {
+        std::vector<Range> runs27, wide;
+#pragma omp for schedule(dynamic, 64)
+        for (std::size_t k = 0; k < count; ++k) {
+            const auto home = static_cast<std::uint32_t>(k * n / count);
+            const Vec3f h = index.local_point(home);
+            const std::uint32_t cube = index.cube_of(home);
+            runs27.clear();
+            index.column_ranges(index.cube_coords(cube), 1, runs27);
+            const Neighbourhood nb = fit_neighbourhood(ctx, home, h, cube, runs27, wide);
+            if (nb.verdict != PlaneVerdict::kPlane) continue;
+            samples[k] = {nb.range, std::sqrt(nb.fit.eigenvalues[0])};
+            ok[k] = 1;
+        }
+    }
+    std::vector<ThicknessSample> kept;
+    for (std::size_t k = 0; k < count; ++k)
+        if (ok[k]) kept.push_back(samples[k]);
+    return NoiseProfile(kept, kNoiseBandPerMu * ctx.config.mu, ctx.config.mu / kNoiseFloorPerMu);
 }
 
 /// Runs f(slab_id, thread_id) over the slabs of one colour (0: even, 1: odd) in parallel, the
@@ -219,17 +485,27 @@ void for_each_slab_of_colour(const CubeIndex& index, std::span<const Slab> slabs
 /// Leftover pass: for each unregistered point, the neighbouring surface whose plane it fits best.
 /// Reads only labels fixed by growing and writes to `attach`, so slabs can run in any order.
 /// Leftovers are a few per cent of the points: their cubes' runs are looked up one cube at a time.
-void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& slab,
-                 std::span<const std::int32_t> labels, const std::vector<Surface>& surfaces,
+void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Surface>& surfaces,
                  std::span<const double> tolerance, Scratch& s,
                  std::vector<std::pair<std::uint32_t, std::int32_t>>& attach) {
+    const CubeIndex& index = ctx.index;
+    const GrowerConfig& cfg = ctx.config;
+    const std::span<const std::int32_t> labels = ctx.labels;
     const auto r2 = static_cast<float>(cfg.mu * cfg.mu);
-    const double far_radius = cfg.max_radius();
-    const auto far_r2 = static_cast<float>(far_radius * far_radius);
-    const int far_reach = static_cast<int>(std::ceil(far_radius / index.cube_size()));
+    const bool every_miss = cfg.plane_test == PlaneTest::kDisk;
+    // Wider searches double the radius from 2 mu: an isolated point up to the adaptive radius's
+    // reach, one beside surfaces that it does not fit up to kMissRadiusPerMu (the surfaces across
+    // a band of rejected edge homes). Each stops at the first radius that finds a surface.
+    std::vector<double> radii;
+    for (double r = 2 * cfg.mu; radii.size() < kFarLevels; r *= 2) {
+        radii.push_back(std::min(r, cfg.max_radius()));
+        if (r >= cfg.max_radius()) break;
+    }
+    if (cfg.max_radius() <= cfg.mu) radii.clear();
+    const double miss_limit = std::min(cfg.max_radius(), kMissRadiusPerMu * cfg.mu);
     for (std::uint32_t c = slab.cube_begin; c < slab.cube_end; ++c) {
         s.runs.clear();
-        s.far_runs.clear();
+        for (auto& runs : s.far_runs) runs.clear();
         for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
             if (labels[i] >= 0) continue;
             if (s.runs.empty()) index.column_ranges(index.cube_coords(c), 1, s.runs);
@@ -249,18 +525,32 @@ void attach_slab(const CubeIndex& index, const GrowerConfig& cfg, const Slab& sl
             };
             // Neighbours come in runs of one surface: considering a surface again changes nothing.
             std::int32_t last = -1;
+            int near = 0;  // points within mu, registered or not
             auto visit = [&](std::uint32_t j) {
+                ++near;
                 const std::int32_t l = labels[j];
                 if (l < 0 || l == last) return;
                 consider(l);
                 last = l;
             };
             for_each_in_runs_within(index, s.runs, p, r2, visit);
-            if (!any_neighbour && far_radius > cfg.mu) {
-                // Isolated at mu: the adaptive radius's reach. Its columns serve the whole cube.
-                if (s.far_runs.empty())
-                    index.column_ranges(index.cube_coords(c), far_reach, s.far_runs);
-                for_each_in_runs_within(index, s.far_runs, p, far_r2, visit);
+            // Sparse at mu: as far as the adaptive radius reaches. Dense but fitting nothing here
+            // (mixed pixels, a rejected edge): only a little farther.
+            const bool sparse = !any_neighbour && near < cfg.min_pts;
+            if (!any_neighbour || (every_miss && best < 0)) {
+                const double limit = sparse || !every_miss ? cfg.max_radius() : miss_limit;
+                for (std::size_t level = 0; level < radii.size() && best < 0; ++level) {
+                    const double radius = std::min(radii[level], limit);
+                    if (s.far_runs[level].empty())
+                        index.column_ranges(
+                            index.cube_coords(c),
+                            static_cast<int>(std::ceil(radii[level] / index.cube_size())),
+                            s.far_runs[level]);
+                    last = -1;
+                    for_each_in_runs_within(index, s.far_runs[level], p,
+                                            static_cast<float>(radius * radius), visit);
+                    if (radii[level] >= limit) break;
+                }
             }
             if (best >= 0) attach.emplace_back(i, best);
         }
@@ -364,6 +654,19 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     const std::size_t target = std::clamp<std::size_t>(n / 256, 4096, 65536);
     const std::vector<Slab> slabs = partition_slabs(index, 2 * reach, target);
     BulkVector<std::int32_t> labels(n, -1);
+    // Best-fit registration keeps each registered point's distance to its plane.
+    BulkVector<float> distance(cfg.plane_test == PlaneTest::kDisk ? n : 0);
+    const Orientation orient = choose_orientation(cloud, cfg, index.bounds());
+    SensorSight sight;
+    if (orient.source == OrientationSource::kScanOrigins) {
+        for (const Vec3d& o : cloud.scan_origins) sight.origins.push_back(index.to_local(o));
+        sight.scan_index = cloud.scan_index;
+        sight.original = index.original_indices();
+        sight.named = true;
+    } else if (orient.source != OrientationSource::kUp) {
+        sight.origins.push_back(index.to_local(orient.origin));
+        sight.named = orient.source == OrientationSource::kViewpoint;
+    }
     // Where each slab's surfaces lie: thread t's scratch.grown[begin, end).
     struct GrownSpan {
         std::size_t thread = 0, begin = 0, end = 0;
@@ -374,7 +677,12 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     // About one surface per 30 points in scans at the paper's mu; a buffer that fills up doubles.
     // Kept under 2 MiB for small clouds, where a huge page would mostly stay empty.
     for (Scratch& sc : scratch) sc.grown.reserve(n / (32 * scratch.size()) + 64);
-    const GrowContext ctx{index, cfg, labels};
+    NoiseProfile noise;
+    const GrowContext sampling{index, cfg, labels, distance, sight, noise};
+    if (cfg.plane_test == PlaneTest::kDisk) noise = measure_noise(sampling, threads);
+    st.noise_band = noise.band();
+    st.noise_sigma = noise.sigmas();
+    const GrowContext ctx{index, cfg, labels, distance, sight, noise};
     std::atomic<std::size_t> done{0};
     for (int colour = 0; colour < 2; ++colour) {
         for_each_slab_of_colour(index, slabs, colour, threads, [&](std::size_t s, int t) {
@@ -443,7 +751,8 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         s.eigenvalues = g.fit.eigenvalues;
         s.radius = g.radius;
         s.neighbours = g.neighbours;
-        tolerance[k] = cfg.tolerance() * double(g.radius) / cfg.mu;
+        s.tolerance = g.tolerance;
+        tolerance[k] = g.tolerance;
     }
     st.surfaces = surface_count;
     if (cfg.pool_angle_deg > 0 && surface_count > 0) {
@@ -455,14 +764,27 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         }
         release(all);  // its moments are in the patches now: free them before pooling's own copy
         PoolingConfig pc;
-        pc.radius = cfg.pool_radius > 0 ? cfg.pool_radius : 2 * cfg.mu;
+        pc.radius = cfg.pooling_radius();
         pc.max_angle = cfg.pool_angle_deg * M_PI / 180.0;
         pc.min_offset = cfg.mu / 10;
         pc.max_offset = cfg.mu / 2;
         pc.threads = threads;
-        const std::vector<Vec3d> pooled = pool_normals(patches, pc);
+        std::vector<std::uint8_t> lone;
+        const std::vector<Vec3d> pooled = pool_normals(
+            patches, pc, lone, cfg.plane_test == PlaneTest::kDisk ? kLoneNeighbours : 0);
         release(patches);
         for (std::size_t k = 0; k < surface_count; ++k) result.surfaces[k].normal = pooled[k];
+        // A patch in no plane with its neighbours is a fit tilted across an edge: its members
+        // go to the leftover pass, which gives each to the neighbouring surface it fits best.
+        if (!lone.empty()) {
+            std::uint64_t dropped = 0;
+            for (std::size_t k = 0; k < surface_count; ++k) {
+                if (!lone[k]) continue;
+                tolerance[k] = -1;  // holds nothing
+                ++dropped;
+            }
+            st.lone_surfaces = dropped;
+        }
         // A reported plane must hold its members: release any the refined plane no longer fits
         // (rare: points at the tolerance's edge); the leftover pass may re-attach them.
         std::uint64_t released = 0;
@@ -489,7 +811,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         std::vector<std::vector<std::pair<std::uint32_t, std::int32_t>>> attach(slabs.size());
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
         for (std::size_t s = 0; s < slabs.size(); ++s) {
-            attach_slab(index, cfg, slabs[s], labels, result.surfaces, tolerance,
+            attach_slab(ctx, slabs[s], result.surfaces, tolerance,
                         scratch[static_cast<std::size_t>(omp_get_thread_num())], attach[s]);
         }
         for (const auto& list : attach)
@@ -501,7 +823,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     // --- Stage 4: member statistics, orientation, labels in input order, range bands.
     t0 = Clock::now();
     const auto orig = index.original_indices();
-    const Orientation orient = choose_orientation(cloud, cfg, index.bounds());
+    release(distance);
     st.orientation = orient.source;
     const bool per_scan = orient.source == OrientationSource::kScanOrigins;
     st.range_known = orient.source != OrientationSource::kUp;
@@ -521,6 +843,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     std::vector<Vec3f> lo(surface_count, Vec3f::Constant(std::numeric_limits<float>::max()));
     std::vector<Vec3f> hi(surface_count, Vec3f::Constant(std::numeric_limits<float>::lowest()));
     std::vector<double> residual_sum(surface_count, 0.0);
+    std::vector<float> max_distance(surface_count, 0.0f);
 #pragma omp parallel num_threads(threads)
     {
         const auto parts = static_cast<std::size_t>(omp_get_num_threads());
@@ -536,7 +859,9 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
             ++result.surfaces[s].point_count;
             lo[s] = lo[s].cwiseMin(p);
             hi[s] = hi[s].cwiseMax(p);
-            residual_sum[s] += static_cast<double>(planes[s].distance(p));
+            const float d = planes[s].distance(p);
+            residual_sum[s] += static_cast<double>(d);
+            max_distance[s] = std::max(max_distance[s], d);
         }
     }
 
@@ -591,6 +916,8 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         registered += s.point_count;
         if (s.point_count == 0) continue;
         s.mean_residual = residual_sum[k] / s.point_count;
+        // The tolerance reported bounds every member, those the leftover pass gave it included.
+        s.tolerance = std::max(s.tolerance, static_cast<double>(max_distance[k]));
         s.bounds.add(index.origin() + lo[k].cast<double>());
         s.bounds.add(index.origin() + hi[k].cast<double>());
     }
@@ -620,6 +947,28 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         if (bands.size() == kMaxRangeBands)  // the last band is open-ended
             bands.back().to = std::numeric_limits<double>::infinity();
         st.range_bands = std::move(bands);
+    }
+    // Best-fit registration can take every member of a surface: such surfaces are dropped (ids
+    // stay in home order).
+    const std::size_t kept =
+        static_cast<std::size_t>(std::count_if(result.surfaces.begin(), result.surfaces.end(),
+                                               [](const Surface& s) { return s.point_count > 0; }));
+    if (kept < surface_count) {
+        std::vector<std::int32_t> new_id(surface_count, -1);
+        std::size_t next = 0;
+        for (std::size_t k = 0; k < surface_count; ++k) {
+            if (result.surfaces[k].point_count == 0) continue;
+            new_id[k] = static_cast<std::int32_t>(next);
+            result.surfaces[next++] = result.surfaces[k];
+        }
+        result.surfaces.resize(kept);
+        st.dropped_surfaces = surface_count - kept;
+#pragma omp parallel for num_threads(threads) schedule(static)
+        for (std::size_t j = 0; j < n_in; ++j) {
+            std::int32_t& l = result.labels[j];
+            if (l >= 0) l = new_id[static_cast<std::size_t>(l)];
+        }
+        st.surfaces = kept;
     }
     st.seconds.finish = seconds_since(t0);
     report("finish", 1.0);

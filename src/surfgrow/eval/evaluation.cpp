@@ -66,12 +66,32 @@ struct BandAccumulator {
     std::vector<double> errors;
 };
 
+constexpr double kIncidenceBandDeg = 15.0;
+constexpr std::size_t kIncidenceBands = 6;
+
 void count(Share& s, bool registered) {
     ++s.points;
     s.registered += registered ? 1 : 0;
 }
 
 }  // namespace
+
+double share_above(std::span<const double> values, double threshold) {
+    if (values.empty()) return kNaN;
+    const auto over =
+        std::count_if(values.begin(), values.end(), [&](double v) { return v > threshold; });
+    return static_cast<double>(over) / static_cast<double>(values.size());
+}
+
+double EvalReport::worst_band_planar(std::uint64_t min_points) const {
+    double worst = kNaN;
+    for (const BandReport& b : bands) {
+        if (b.planar.points < min_points) continue;
+        const double f = b.planar.fraction();
+        if (!(worst <= f)) worst = f;
+    }
+    return worst;
+}
 
 double Share::fraction() const {
     return points ? static_cast<double>(registered) / static_cast<double>(points) : kNaN;
@@ -91,6 +111,7 @@ EvalReport evaluate(const PointCloud& cloud, const GrowOutcome& grown,
     std::vector<std::vector<double>> face_err(faces.size());
     std::vector<Share> face_share(faces.size());
     std::vector<BandAccumulator> bands;
+    std::vector<BandAccumulator> incidence(kIncidenceBands);
     // (surface << 32 | face) of every registered point with a truth face, for purity.
     std::vector<std::uint64_t> pairs;
     pairs.reserve(cloud.size());
@@ -125,6 +146,16 @@ EvalReport evaluate(const PointCloud& cloud, const GrowOutcome& grown,
             if (planar) count(band->planar, registered);
             if (planar && in_workspace) count(r.planar_workspace, registered);
         }
+        BandAccumulator* inc = nullptr;
+        if (origin && planar) {
+            const Vec3d sight = p - *origin;
+            const double cos_i =
+                std::abs(face->normal_at(world).dot(sight)) / std::max(sight.norm(), 1e-300);
+            const double deg = std::acos(std::min(1.0, cos_i)) * kDegPerRad;
+            inc = &incidence[std::min(static_cast<std::size_t>(deg / kIncidenceBandDeg),
+                                      kIncidenceBands - 1)];
+            count(inc->planar, registered);
+        }
         if (!registered) continue;
 
         const Surface& s = grown.surfaces[static_cast<std::size_t>(sid)];
@@ -140,6 +171,7 @@ EvalReport evaluate(const PointCloud& cloud, const GrowOutcome& grown,
         if (planar) {
             planar_err.push_back(err);
             if (band) band->errors.push_back(err);
+            if (inc) inc->errors.push_back(err);
             if (in_workspace) workspace_err.push_back(err);
         } else {
             curved_err.push_back(err);
@@ -152,6 +184,8 @@ EvalReport evaluate(const PointCloud& cloud, const GrowOutcome& grown,
         }
     }
 
+    r.normal_over_10 = share_above(planar_err, 10.0);
+    r.normal_over_45 = share_above(planar_err, 45.0);
     r.normal_deg = summarize(planar_err);
     r.normal_workspace_deg = summarize(workspace_err);
     r.normal_curved_deg = summarize(curved_err);
@@ -230,8 +264,22 @@ EvalReport evaluate(const PointCloud& cloud, const GrowOutcome& grown,
                                      : static_cast<double>(b + 1) * options.band_m;
         br.all = bands[b].all;
         br.planar = bands[b].planar;
+        br.over_10 = share_above(bands[b].errors, 10.0);
+        br.over_45 = share_above(bands[b].errors, 45.0);
         br.normal_deg = summarize(bands[b].errors);
         r.bands.push_back(br);
+    }
+    if (r.range_known) {
+        for (std::size_t b = 0; b < kIncidenceBands; ++b) {
+            IncidenceReport ir;
+            ir.from_deg = static_cast<double>(b) * kIncidenceBandDeg;
+            ir.to_deg = static_cast<double>(b + 1) * kIncidenceBandDeg;
+            ir.planar = incidence[b].planar;
+            ir.over_10 = share_above(incidence[b].errors, 10.0);
+            ir.over_45 = share_above(incidence[b].errors, 45.0);
+            ir.normal_deg = summarize(incidence[b].errors);
+            r.incidence.push_back(ir);
+        }
     }
     return r;
 }

@@ -28,6 +28,18 @@ struct BandReport {
     Share all;                ///< every finite point in the band
     Share planar;             ///< points whose truth face is planar
     Distribution normal_deg;  ///< per-point normal error of the planar points registered
+    double over_10 = 0.0;     ///< share of those more than 10 degrees off (NaN: none)
+    double over_45 = 0.0;     ///< share of those more than 45 degrees off (NaN: none)
+};
+
+/// One band of incidence: the angle between a planar point's true normal and its line of sight.
+struct IncidenceReport {
+    double from_deg = 0.0;
+    double to_deg = 0.0;
+    Share planar;             ///< planar points seen at this incidence
+    Distribution normal_deg;  ///< per-point normal error of those registered
+    double over_10 = 0.0;     ///< share of those more than 10 degrees off (NaN: none)
+    double over_45 = 0.0;     ///< share of those more than 45 degrees off (NaN: none)
 };
 
 /// One ground-truth face.
@@ -78,6 +90,8 @@ struct EvalReport {
     // Normals: angle between the normal of the surface a point was registered to and the true
     // normal of the point's face at that point, as lines (0..90 degrees).
     Distribution normal_deg;            ///< planar points
+    double normal_over_10 = 0.0;        ///< share of registered planar points > 10 deg off
+    double normal_over_45 = 0.0;        ///< share of registered planar points > 45 deg off
     Distribution normal_workspace_deg;  ///< planar points within the workspace
     Distribution normal_curved_deg;     ///< points on cylinder sides (true normal: radial)
     /// Oriented: of the registered points with a truth face and a known scan origin, those whose
@@ -103,7 +117,26 @@ struct EvalReport {
     bool range_known = false;  ///< whether points have a scan origin (bands, workspace, facing)
     EvalOptions options;
     std::vector<BandReport> bands;
+    std::vector<IncidenceReport> incidence;  ///< 15-degree bands from 0 to 90 (range known)
     std::vector<FaceReport> faces;
+
+    /// The same normal figures with every registered point given its bound plane's normal
+    /// (planes.json), and SegComp's correct detection of the planar faces by the bound planes;
+    /// filled by evaluate_through_planes() (plane_evaluation.hpp) where planes are known.
+    struct ThroughPlanes {
+        bool known = false;
+        Distribution normal_deg;
+        double over_10 = 0.0;
+        double over_45 = 0.0;
+        std::vector<BandReport> bands;
+        std::vector<IncidenceReport> incidence;
+        std::uint64_t faces_scored = 0;    ///< planar faces with >= 500 points
+        std::uint64_t faces_detected = 0;  ///< of those, correctly detected (T = 0.8)
+    } planes;
+
+    /// The lowest registered share of planar points over the range bands holding at least
+    /// `min_points` planar points (NaN: none does).
+    [[nodiscard]] double worst_band_planar(std::uint64_t min_points = 1000) const;
 };
 
 /// Evaluates `grown` against the truth. `cloud` carries the truth face id of every point in
@@ -117,6 +150,9 @@ struct EvalReport {
 [[nodiscard]] EvalReport evaluate(const PointCloud& cloud, const GrowOutcome& grown,
                                   std::span<const scanner::Face> faces,
                                   const EvalOptions& options = {});
+
+/// Share of `values` above `threshold` (NaN when empty).
+[[nodiscard]] double share_above(std::span<const double> values, double threshold);
 
 /// The same, for a GrowResult held in memory.
 [[nodiscard]] EvalReport evaluate(const PointCloud& cloud, const GrowResult& result,

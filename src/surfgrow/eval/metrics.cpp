@@ -1,9 +1,12 @@
 #include "surfgrow/eval/metrics.hpp"
 
+#include <limits>
+
 namespace surfgrow::eval {
 
 std::vector<Metric> metrics(const EvalReport& r) {
     constexpr double mm = 1000.0;
+    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
     return {
         {"registered", r.all.fraction(), "fraction", "finite points registered to a surface"},
         {"registered_grown", r.registered_grown, "fraction",
@@ -20,6 +23,22 @@ std::vector<Metric> metrics(const EvalReport& r) {
          "median normal error of registered points on planar faces"},
         {"normal_p95", r.normal_deg.p95, "deg", "95th percentile of the same"},
         {"normal_mean", r.normal_deg.mean, "deg", "mean of the same"},
+        {"normal_over_10", r.normal_over_10, "fraction",
+         "share of registered points on planar faces more than 10 degrees off"},
+        {"normal_over_45", r.normal_over_45, "fraction",
+         "share of registered points on planar faces more than 45 degrees off"},
+        {"registered_worst_band", r.worst_band_planar(), "fraction",
+         "lowest planar registered share over the range bands with >= 1000 planar points"},
+        {"planes_normal_p95", r.planes.known ? r.planes.normal_deg.p95 : kNaN, "deg",
+         "95th percentile normal error with each point given its bound plane's normal"},
+        {"planes_normal_over_45", r.planes.known ? r.planes.over_45 : kNaN, "fraction",
+         "share of the same more than 45 degrees off"},
+        {"faces_detected",
+         r.planes.known && r.planes.faces_scored
+             ? double(r.planes.faces_detected) / double(r.planes.faces_scored)
+             : kNaN,
+         "fraction",
+         "planar faces with >= 500 points that a bound plane detects (SegComp, T = 0.8)"},
         {"normal_workspace_median", r.normal_workspace_deg.median, "deg",
          "median normal error on planar faces within the workspace radius"},
         {"normal_workspace_p95", r.normal_workspace_deg.p95, "deg", "95th percentile of the same"},

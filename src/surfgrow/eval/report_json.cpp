@@ -26,19 +26,46 @@ json distribution(const Distribution& d) {
             {"max", number(d.max)}};
 }
 
+json bands_json(const std::vector<BandReport>& bands) {
+    json out = json::array();
+    for (const BandReport& b : bands)
+        out.push_back({{"from_m", number(b.from_m)},
+                       {"to_m", number(b.to_m)},
+                       {"all", share(b.all)},
+                       {"planar", share(b.planar)},
+                       {"normal_deg", distribution(b.normal_deg)},
+                       {"over_10", number(b.over_10)},
+                       {"over_45", number(b.over_45)}});
+    return out;
+}
+
+json incidence_json(const std::vector<IncidenceReport>& bands) {
+    json out = json::array();
+    for (const IncidenceReport& b : bands)
+        out.push_back({{"from_deg", b.from_deg},
+                       {"to_deg", b.to_deg},
+                       {"planar", share(b.planar)},
+                       {"normal_deg", distribution(b.normal_deg)},
+                       {"over_10", number(b.over_10)},
+                       {"over_45", number(b.over_45)}});
+    return out;
+}
+
 }  // namespace
 
 json to_json(const EvalReport& r, const std::vector<RequirementCheck>& checks) {
     json metric_values = json::object();
     for (const Metric& m : metrics(r)) metric_values[std::string(m.name)] = number(m.value);
 
-    json bands = json::array();
-    for (const BandReport& b : r.bands)
-        bands.push_back({{"from_m", number(b.from_m)},
-                         {"to_m", number(b.to_m)},
-                         {"all", share(b.all)},
-                         {"planar", share(b.planar)},
-                         {"normal_deg", distribution(b.normal_deg)}});
+    json planes = nullptr;
+    if (r.planes.known)
+        planes = {{"normal_deg", distribution(r.planes.normal_deg)},
+                  {"over_10", number(r.planes.over_10)},
+                  {"over_45", number(r.planes.over_45)},
+                  {"bands", bands_json(r.planes.bands)},
+                  {"incidence", incidence_json(r.planes.incidence)},
+                  {"faces_scored", r.planes.faces_scored},
+                  {"faces_detected", r.planes.faces_detected}};
     json faces = json::array();
     for (const FaceReport& f : r.faces) {
         if (f.points.points == 0 && f.surfaces == 0) continue;
@@ -77,6 +104,8 @@ json to_json(const EvalReport& r, const std::vector<RequirementCheck>& checks) {
           {"reported_fraction", number(r.registered_reported)}}},
         {"normals",
          {{"planar_deg", distribution(r.normal_deg)},
+          {"planar_over_10", number(r.normal_over_10)},
+          {"planar_over_45", number(r.normal_over_45)},
           {"planar_workspace_deg", distribution(r.normal_workspace_deg)},
           {"curved_deg", distribution(r.normal_curved_deg)},
           {"facing_sensor", share(r.facing_sensor)}}},
@@ -94,7 +123,9 @@ json to_json(const EvalReport& r, const std::vector<RequirementCheck>& checks) {
           {"faces_missed", r.faces_missed},
           {"surfaces_per_face", number(r.surfaces_per_face)},
           {"data_reduction", number(r.data_reduction)}}},
-        {"bands", bands},
+        {"bands", bands_json(r.bands)},
+        {"incidence", incidence_json(r.incidence)},
+        {"through_planes", planes},
         {"faces", faces},
         {"requirements", reqs},
     };

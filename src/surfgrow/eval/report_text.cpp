@@ -43,7 +43,12 @@ std::string eval_line(const EvalReport& r) {
     if (r.range_known)
         line += ", planar within " + fmt("%g m ", r.options.workspace_m) +
                 pct(r.planar_workspace.fraction());
-    line += "), normal error median " + deg(r.normal_deg.median) + " p95 " + deg(r.normal_deg.p95);
+    line += "), normal error median " + deg(r.normal_deg.median) + " p95 " + deg(r.normal_deg.p95) +
+            ", " + pct(r.normal_over_45) + " > 45 deg";
+    if (r.planes.known)
+        line += " (bound planes: p95 " + deg(r.planes.normal_deg.p95) + ", " +
+                pct(r.planes.over_45) + " > 45 deg, " + std::to_string(r.planes.faces_detected) +
+                "/" + std::to_string(r.planes.faces_scored) + " faces)";
     if (r.range_known) line += ", facing sensor " + pct(r.facing_sensor.fraction());
     line += ", purity " + pct(r.purity);
     return line;
@@ -93,17 +98,47 @@ std::string summary_text(const EvalReport& r) {
          fmt(" (%.1f each), ", r.surfaces_per_face) + std::to_string(r.faces_missed) +
          fmt(" with >= %llu points have none\n",
              static_cast<unsigned long long>(r.options.min_face_points));
-    if (!r.bands.empty()) {
-        t += "range band      points  registered  planar reg.  normal median    p95\n";
-        for (const BandReport& b : r.bands) {
+    auto band_table = [&](const std::vector<BandReport>& bands, bool registration) {
+        t += registration ? "range band      points  registered  planar reg.  normal median    "
+                            "p95   > 10 deg  > 45 deg\n"
+                          : "range band     normal median    p95   > 10 deg  > 45 deg\n";
+        for (const BandReport& b : bands) {
             if (b.all.points == 0) continue;
             const std::string band = std::isfinite(b.to_m) ? fmt("%.1f-%.1f m", b.from_m, b.to_m)
                                                            : fmt(">= %.1f m", b.from_m);
-            t += fmt("%-12s %9llu %11s %12s %14s %10s\n", band.c_str(),
-                     static_cast<unsigned long long>(b.all.points), pct(b.all.fraction()).c_str(),
-                     pct(b.planar.fraction()).c_str(), deg(b.normal_deg.median).c_str(),
-                     deg(b.normal_deg.p95).c_str());
+            if (registration)
+                t += fmt("%-12s %9llu %11s %12s", band.c_str(),
+                         static_cast<unsigned long long>(b.all.points),
+                         pct(b.all.fraction()).c_str(), pct(b.planar.fraction()).c_str());
+            else
+                t += fmt("%-12s", band.c_str());
+            t += fmt(" %14s %10s %10s %9s\n", deg(b.normal_deg.median).c_str(),
+                     deg(b.normal_deg.p95).c_str(), pct(b.over_10).c_str(), pct(b.over_45).c_str());
         }
+    };
+    auto incidence_table = [&](const std::vector<IncidenceReport>& bands) {
+        t += "incidence      planar pts  planar reg.  normal median    p95   > 10 deg  > 45 deg\n";
+        for (const IncidenceReport& b : bands) {
+            if (b.planar.points == 0) continue;
+            t += fmt("%2.0f-%2.0f deg %14llu %12s %14s %10s %10s %9s\n", b.from_deg, b.to_deg,
+                     static_cast<unsigned long long>(b.planar.points),
+                     pct(b.planar.fraction()).c_str(), deg(b.normal_deg.median).c_str(),
+                     deg(b.normal_deg.p95).c_str(), pct(b.over_10).c_str(), pct(b.over_45).c_str());
+        }
+    };
+    t += "normal tail      planar: " + pct(r.normal_over_10) + " > 10 deg, " +
+         pct(r.normal_over_45) + " > 45 deg\n";
+    if (!r.bands.empty()) band_table(r.bands, true);
+    if (!r.incidence.empty()) incidence_table(r.incidence);
+    if (r.planes.known) {
+        t += "bound planes     each point judged by its bound plane (planes.json): median " +
+             deg(r.planes.normal_deg.median) + ", p95 " + deg(r.planes.normal_deg.p95) + ", " +
+             pct(r.planes.over_10) + " > 10 deg, " + pct(r.planes.over_45) + " > 45 deg\n";
+        t += "  faces detected " + std::to_string(r.planes.faces_detected) + " of " +
+             std::to_string(r.planes.faces_scored) +
+             " planar faces with >= 500 points (SegComp, T = 0.8)\n";
+        if (!r.planes.bands.empty()) band_table(r.planes.bands, false);
+        if (!r.planes.incidence.empty()) incidence_table(r.planes.incidence);
     }
     return t;
 }

@@ -51,11 +51,15 @@ nlohmann::json parameters_json(const GrowerConfig& c) {
         {"mu", c.mu},
         {"min_pts", c.min_pts},
         {"alpha", c.alpha},
+        {"plane_test", c.plane_test == PlaneTest::kPaper ? "paper" : "disk"},
+        {"min_spread", c.min_spread},
+        {"max_incidence_deg", c.max_incidence_deg},
+        {"noise_sigmas", c.noise_sigmas},
         {"plane_tolerance", c.tolerance()},
         {"mu_max", c.max_radius()},
         {"min_new_points", c.min_new_points},
         {"pool_angle_deg", c.pool_angle_deg},
-        {"pool_radius", c.pool_radius > 0 ? c.pool_radius : 2 * c.mu},
+        {"pool_radius", c.pooling_radius()},
         {"attach_leftovers", c.attach_leftovers},
         {"seed", c.seed},
         {"range_band", c.range_band},
@@ -95,7 +99,10 @@ nlohmann::json summary_json(const GrowStats& s) {
         {"rejected_nonplanar", s.rejected_nonplanar},
         {"rejected_covered", s.rejected_covered},
         {"released_by_refinement", s.released_by_refinement},
+        {"dropped_surfaces", s.dropped_surfaces},
+        {"lone_surfaces", s.lone_surfaces},
         {"adapted_surfaces", s.adapted_surfaces},
+        {"noise_sigma_by_range", {{"band", s.noise_band}, {"sigma", s.noise_sigma}}},
         {"noise_points", s.noise_points},
         {"data_reduction", s.data_reduction()},
         {"orientation", orientation_name(s.orientation)},
@@ -204,6 +211,8 @@ void write_result_json(std::ostream& out, const GrowResult& result, const Grower
         row += std::to_string(s.point_count);
         row += ",\"mean_residual\":";
         put_number(row, s.mean_residual);
+        row += ",\"tolerance\":";
+        put_number(row, s.tolerance);
         row += ",\"bounds\":{\"min\":";
         put_vec(row, s.bounds.empty() ? home : Vec3d(s.bounds.min + meta.offset));
         row += ",\"max\":";
@@ -288,6 +297,8 @@ StoredResult read_result_json(const std::filesystem::path& file) {
         r.config.mu = p.at("mu").get<double>();
         r.config.min_pts = p.at("min_pts").get<int>();
         r.config.alpha = p.at("alpha").get<double>();
+        r.config.plane_test =
+            p.value("plane_test", "paper") == "disk" ? PlaneTest::kDisk : PlaneTest::kPaper;
         r.config.plane_tolerance = p.at("plane_tolerance").get<double>();
         r.config.adaptive_factor = p.at("mu_max").get<double>() / r.config.mu;
         r.config.seed = p.at("seed").get<std::uint64_t>();
@@ -310,6 +321,7 @@ StoredResult read_result_json(const std::filesystem::path& file) {
             surf.neighbours = js.at("neighbours").get<std::uint32_t>();
             surf.point_count = js.at("points").get<std::uint32_t>();
             surf.mean_residual = js.at("mean_residual").get<double>();
+            surf.tolerance = js.value("tolerance", 0.0);
             surf.bounds.add(vec_of(js.at("bounds").at("min")) - r.meta.offset);
             surf.bounds.add(vec_of(js.at("bounds").at("max")) - r.meta.offset);
             if (!surf.normal.allFinite() || std::abs(surf.normal.norm() - 1.0) > 1e-6 ||

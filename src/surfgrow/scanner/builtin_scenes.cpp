@@ -119,16 +119,75 @@ SceneDescription pipes_scene() {
     return s;
 }
 
+SceneDescription corridor_scene() {
+    SceneDescription s;
+    s.name = "corridor";
+    // The scanner looks along the corridor with its tilt axis across it, so at pan +-90 deg the
+    // beam lies along the axis and every tilt position meets the side walls at one spot (the
+    // tilt axis's poles, 1 m away); the end wall stands 3.5 m ahead, near the URG's 4 m limit.
+    const double half_w = 1.0, h = 2.5, x_back = -1.5, x_end = 3.5;
+    const double len = x_end - x_back, xc = 0.5 * (x_back + x_end);
+    add_rectangle(s, "floor", Vec3d(xc, 0, 0), Vec3d::UnitX(), Vec3d::UnitY(), len, 2 * half_w);
+    add_rectangle(s, "ceiling", Vec3d(xc, 0, h), Vec3d::UnitX(), Vec3d::UnitY(), len, 2 * half_w);
+    add_rectangle(s, "left-wall", Vec3d(xc, half_w, 0.5 * h), Vec3d::UnitX(), Vec3d::UnitZ(), len,
+                  h);
+    add_rectangle(s, "right-wall", Vec3d(xc, -half_w, 0.5 * h), Vec3d::UnitX(), Vec3d::UnitZ(), len,
+                  h);
+    add_rectangle(s, "end-wall", Vec3d(x_end, 0, 0.5 * h), Vec3d::UnitY(), Vec3d::UnitZ(),
+                  2 * half_w, h);
+    add_rectangle(s, "back-wall", Vec3d(x_back, 0, 0.5 * h), Vec3d::UnitY(), Vec3d::UnitZ(),
+                  2 * half_w, h);
+    // Thin steel: a 10 mm shelf plate on the left wall and a 10 mm fin standing off the right.
+    add_box(s, "shelf-plate", Vec3d(0.8, half_w - 0.25, 0.9), Vec3d(1.6, half_w, 0.91));
+    add_box(s, "fin-plate", Vec3d(2.0, -half_w, 0.0), Vec3d(2.01, -half_w + 0.3, 2.0));
+    add_cylinder(s, "ceiling-pipe", Vec3d(x_back, 0.5, h - 0.15), Vec3d(x_end, 0.5, h - 0.15),
+                 0.05);
+    s.scanner.home = pose_from_xyz_rpy(Vec3d(0, 0, 1.2), Vec3d::Zero());
+    s.scanner.step_m = Vec3d(0.5, 0, 0);
+    return s;
+}
+
+SceneDescription stairs_scene() {
+    SceneDescription s;
+    s.name = "stairs";
+    // A flight of six steps with a landing between a side wall (at the tilt axis's pole, 0.9 m
+    // to the left) and a wall carrying two pipes on the right; treads and risers are faces
+    // 170-280 mm wide meeting at convex and concave edges, seen from 1-4 m.
+    const double x0 = 1.0, going = 0.28, rise = 0.17, half_w = 0.8;
+    const int steps = 6;
+    const double x_top = x0 + steps * going;
+    add_rectangle(s, "floor", Vec3d(1.5, -0.15, 0), Vec3d::UnitX(), Vec3d::UnitY(), 5.0, 2.1);
+    for (int k = 0; k < steps; ++k) {
+        add_box(s, cat({"step-", std::to_string(k)}), Vec3d(x0 + k * going, -half_w, 0),
+                Vec3d(x_top, half_w, (k + 1) * rise));
+    }
+    add_box(s, "landing", Vec3d(x_top, -half_w, 0), Vec3d(x_top + 1.0, half_w, steps * rise));
+    add_rectangle(s, "side-wall", Vec3d(1.5, 0.9, 1.25), Vec3d::UnitX(), Vec3d::UnitZ(), 5.0, 2.5);
+    add_rectangle(s, "pipe-wall", Vec3d(1.5, -1.2, 1.25), Vec3d::UnitX(), Vec3d::UnitZ(), 5.0, 2.5);
+    add_cylinder(s, "pipe-low", Vec3d(-1.0, -1.08, 0.5), Vec3d(4.0, -1.08, 0.5), 0.06);
+    add_cylinder(s, "pipe-high", Vec3d(-1.0, -1.12, 1.4), Vec3d(4.0, -1.12, 1.4), 0.04);
+    // A 10 mm balustrade plate along the right edge of the flight: thin steel seen edge-on at
+    // its top.
+    add_box(s, "balustrade-plate", Vec3d(x0, -half_w - 0.01, 0), Vec3d(x_top + 1.0, -half_w, 1.17));
+    s.scanner.home = pose_from_xyz_rpy(Vec3d(0, 0, 1.0), Vec3d::Zero());
+    s.scanner.step_m = Vec3d(0, -0.4, 0);
+    return s;
+}
+
 std::vector<std::string> builtin_scene_names() {
-    return {"ibeam-channel", "room-corner", "pipes"};
+    return {"ibeam-channel", "room-corner", "pipes", "corridor", "stairs"};
 }
 
 SceneDescription builtin_scene(std::string_view name) {
     if (name == "ibeam-channel") return ibeam_channel_scene();
     if (name == "room-corner") return room_corner_scene();
     if (name == "pipes") return pipes_scene();
+    if (name == "corridor") return corridor_scene();
+    if (name == "stairs") return stairs_scene();
+    std::string names;
+    for (const std::string& n : builtin_scene_names()) names += (names.empty() ? "" : ", ") + n;
     throw Error(ErrorCode::kInvalidParameter,
-                cat({"unknown scene '", name, "' (built in: ibeam-channel, room-corner, pipes)"}));
+                cat({"unknown scene '", name, "' (built in: ", names, ")"}));
 }
 
 }  // namespace surfgrow::scanner

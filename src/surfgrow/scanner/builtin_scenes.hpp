@@ -1,4 +1,5 @@
-// Scenes that ship with surfgrow: the paper's I-beam channel (Fig. 1), a room corner, pipes.
+// Scenes that ship with surfgrow: the paper's I-beam channel (Fig. 1), a room corner, pipes, and
+// scenes that attack the method: a corridor (walls at the tilt axis's poles, far end) and stairs.
 #pragma once
 
 #include <string>
@@ -47,7 +48,15 @@ struct IBeamChannelParams {
 /// thin parts and many depth edges. Scanner 0.9 m above the floor, looking at the wall.
 [[nodiscard]] SceneDescription pipes_scene();
 
-/// "ibeam-channel", "room-corner", "pipes".
+/// A corridor 2 m wide and 2.5 m high, seen along its length: both side walls at the tilt axis's
+/// poles (1 m), an end wall at 3.5 m, a 10 mm shelf plate and fin, a ceiling pipe.
+[[nodiscard]] SceneDescription corridor_scene();
+
+/// A flight of six steps and a landing between a side wall (at the tilt axis's pole) and a wall
+/// with two pipes, a 10 mm balustrade plate along the flight; scanner 1 m above the floor.
+[[nodiscard]] SceneDescription stairs_scene();
+
+/// "ibeam-channel", "room-corner", "pipes", "corridor", "stairs".
 [[nodiscard]] std::vector<std::string> builtin_scene_names();
 
 /// The built-in scene called `name`; throws Error(kInvalidParameter) listing the names otherwise.

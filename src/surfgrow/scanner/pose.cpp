@@ -1,5 +1,7 @@
 #include "surfgrow/scanner/pose.hpp"
 
+#include "surfgrow/scanner/noise_model.hpp"
+
 #include <Eigen/SVD>
 #include <cmath>
 
@@ -70,6 +72,19 @@ Pose pose_from_xyz_rpy(const Vec3d& xyz_m, const Vec3d& rpy_rad) {
     pose.linear() = rotation_from_rpy(rpy_rad);
     pose.translation() = xyz_m;
     return pose;
+}
+
+Pose perturb_pose(const Pose& pose, double sigma_m, double sigma_rad, std::uint64_t seed) {
+    if (sigma_m == 0 && sigma_rad == 0) return pose;
+    GaussianSource g(seed);
+    const Vec3d t(g.normal() * sigma_m, g.normal() * sigma_m, g.normal() * sigma_m);
+    Vec3d axis(g.normal(), g.normal(), g.normal());
+    if (axis.norm() < 1e-12) axis = Vec3d::UnitZ();
+    const Eigen::AngleAxisd turn(g.normal() * sigma_rad, axis.normalized());
+    Pose error = Pose::Identity();
+    error.linear() = turn.toRotationMatrix();
+    error.translation() = t;
+    return error * pose;
 }
 
 }  // namespace surfgrow::scanner

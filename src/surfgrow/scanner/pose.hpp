@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstdint>
 
 #include "surfgrow/core/geometry.hpp"
 
@@ -34,6 +35,13 @@ void check_rigid(const Pose& pose, double tolerance = kRigidTolerance);
 
 /// Pose from a position in metres and roll, pitch, yaw in radians (see rotation_from_rpy).
 [[nodiscard]] Pose pose_from_xyz_rpy(const Vec3d& xyz_m, const Vec3d& rpy_rad);
+
+/// `pose` moved by a small random rigid error, as a robot's pose estimate errs: a translation with
+/// each axis drawn from N(0, sigma_m) and a rotation about a random axis by an angle drawn from
+/// N(0, sigma_rad), both from `seed` alone. Multi-pose fusion with such recorded poses stacks a
+/// surface in slightly shifted layers, as real fused scans do. Zero sigmas return `pose`.
+[[nodiscard]] Pose perturb_pose(const Pose& pose, double sigma_m, double sigma_rad,
+                                std::uint64_t seed);
 
 [[nodiscard]] inline double deg_to_rad(double deg) {
     return deg * (3.14159265358979323846 / 180.0);

@@ -1,0 +1,292 @@
+// The study behind the disk test's defaults (docs/algorithm.md, "The plane test"): every built-in
+// scene, at the optical offsets 0 and 40 mm, one pose and three fused with small pose errors,
+// grown with the defaults (or the settings given); the registered share by range band and the
+// tails of the per-point normal error, for patches and through the bound planes.
+// Run: build/bench/robustness_study [--paper] [--scene NAME] [--spread S] [--incidence DEG]
+//      [--sigmas K] [--mu-max FACTOR] [--alpha A]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "surfgrow/core/bound_planes.hpp"
+#include "surfgrow/core/surface_grower.hpp"
+#include "surfgrow/eval/evaluation.hpp"
+#include "surfgrow/eval/plane_evaluation.hpp"
+#include "surfgrow/scanner/builtin_scenes.hpp"
+#include "surfgrow/scanner/fuse.hpp"
+#include "surfgrow/scanner/scan_simulator.hpp"
+
+using namespace surfgrow;
+
+namespace {
+
+std::uint64_t pose_seed = 7;  // the pose errors: as the tests draw them
+
+PointCloud scan(const scanner::Scene& scene, double offset_m, int poses, std::uint64_t seed) {
+    scanner::ScannerSpec spec;
+    spec.optical_offset_m = Vec3d(0, 0, offset_m);
+    const scanner::ScanSimulator sim(scene, spec);
+    std::vector<scanner::RawScan> raws;
+    std::uint64_t k = 0;
+    for (auto& s : sim.simulate(scanner::scan_poses(scene.description().scanner, poses), seed)) {
+        // Fused with recorded poses 2 mm and 0.1 degree off, as a robot's are.
+        if (poses > 1)
+            s.raw.pose = scanner::perturb_pose(s.raw.pose, 0.002, scanner::deg_to_rad(0.1),
+                                               mix_seed(pose_seed, k));
+        ++k;
+        raws.push_back(std::move(s.raw));
+    }
+    return scanner::fuse_scans(raws);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    GrowerConfig config;
+    std::vector<std::string> scenes = scanner::builtin_scene_names();
+    for (int a = 1; a < argc; ++a) {
+        const std::string arg = argv[a];
+        const char* next = a + 1 < argc ? argv[a + 1] : "0";
+        if (arg == "--paper") {
+            config.plane_test = PlaneTest::kPaper;
+            config.adaptive_factor = 2.0;
+        } else if (arg == "--scene") {
+            scenes = {next};
+            ++a;
+        } else if (arg == "--spread") {
+            config.min_spread = std::atof(next);
+            ++a;
+        } else if (arg == "--incidence") {
+            config.max_incidence_deg = std::atof(next);
+            ++a;
+        } else if (arg == "--sigmas") {
+            config.noise_sigmas = std::atof(next);
+            ++a;
+        } else if (arg == "--mu-max") {
+            config.adaptive_factor = std::atof(next);
+            ++a;
+        } else if (arg == "--pool-radius") {
+            config.pool_radius = std::atof(next) * config.mu;
+            ++a;
+        } else if (arg == "--pool-angle") {
+            config.pool_angle_deg = std::atof(next);
+            ++a;
+        } else if (arg == "--thickness") {
+            config.thickness_sigmas = std::atof(next);
+            ++a;
+        } else if (arg == "--pose-seed") {
+            pose_seed = std::strtoull(next, nullptr, 10);
+            ++a;
+        } else if (arg == "--alpha") {
+            config.alpha = std::atof(next);
+            ++a;
+        } else {
+            std::fprintf(stderr, "unknown argument %s\n", arg.c_str());
+            return 2;
+        }
+    }
+    std::printf("%-14s %4s %5s %8s | %7s %7s | %6s %6s %6s %6s | %6s %6s | %5s | %6s\n", "scene",
+                "off", "poses", "points", "reg", "worst", "med", "p95", ">10", ">45", "pl.p95",
+                "pl>45", "faces", "grow s");
+    for (const std::string& name : scenes) {
+        const scanner::Scene scene(scanner::builtin_scene(name));
+        for (const double offset : {0.0, 0.040}) {
+            for (const int poses : {1, 3}) {
+                const PointCloud cloud = scan(scene, offset, poses, 1);
+                const auto t0 = std::chrono::steady_clock::now();
+                const GrowResult r = grow_surfaces(cloud, config);
+                const double secs =
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                const eval::EvalReport e = eval::evaluate(cloud, r, scene.faces());
+                BoundPlaneConfig pc;
+                pc.mu = config.mu;
+                const BoundPlanes planes = compute_bound_planes(cloud, r, pc);
+                const eval::EvalReport ep =
+                    eval::evaluate_through_planes(cloud, r, planes, scene.faces());
+                const eval::FaceDetection fd =
+                    eval::plane_detections(cloud, r, planes, scene.faces());
+                std::printf(
+                    "%-14s %4.0f %5d %8zu | %6.2f%% %6.2f%% | %6.2f %6.2f %5.2f%% %5.2f%% | %6.2f "
+                    "%5.2f%% | %2llu/%-2llu | %6.3f\n",
+                    name.c_str(), offset * 1000, poses, cloud.size(), 100 * e.planar.fraction(),
+                    100 * e.worst_band_planar(), e.normal_deg.median, e.normal_deg.p95,
+                    100 * e.normal_over_10, 100 * e.normal_over_45, ep.normal_deg.p95,
+                    100 * ep.normal_over_45, static_cast<unsigned long long>(fd.correct),
+                    static_cast<unsigned long long>(fd.faces), secs);
+                if (std::getenv("STUDY_TIMES"))
+                    std::printf(
+                        "      index %.3f grow %.3f attach %.3f finish %.3f s; tried %llu, "
+                        "sparse %llu, nonplanar %llu, covered %llu, adapted %llu, "
+                        "surfaces %llu, lone %llu\n",
+                        r.stats.seconds.index, r.stats.seconds.grow, r.stats.seconds.attach,
+                        r.stats.seconds.finish,
+                        static_cast<unsigned long long>(r.stats.homes_tried),
+                        static_cast<unsigned long long>(r.stats.rejected_sparse),
+                        static_cast<unsigned long long>(r.stats.rejected_nonplanar),
+                        static_cast<unsigned long long>(r.stats.rejected_covered),
+                        static_cast<unsigned long long>(r.stats.adapted_surfaces),
+                        static_cast<unsigned long long>(r.stats.surfaces),
+                        static_cast<unsigned long long>(r.stats.lone_surfaces));
+                if (std::getenv("STUDY_BANDS")) {
+                    for (const eval::BandReport& b : e.bands) {
+                        if (b.planar.points < 200) continue;
+                        std::printf(
+                            "      %.1f-%.1f m: %7llu planar, %6.2f%% reg, p95 %6.2f, >10 "
+                            "%5.2f%%, >45 %5.2f%%\n",
+                            b.from_m, b.to_m, static_cast<unsigned long long>(b.planar.points),
+                            100 * b.planar.fraction(), b.normal_deg.p95, 100 * b.over_10,
+                            100 * b.over_45);
+                    }
+                    for (const eval::IncidenceReport& b : e.incidence) {
+                        if (b.planar.points < 200) continue;
+                        std::printf(
+                            "      incidence %2.0f-%2.0f: %7llu planar, %6.2f%% reg, p95 "
+                            "%6.2f, >45 %5.2f%%\n",
+                            b.from_deg, b.to_deg, static_cast<unsigned long long>(b.planar.points),
+                            100 * b.planar.fraction(), b.normal_deg.p95, 100 * b.over_45);
+                    }
+                }
+                if (std::getenv("STUDY_FACES")) {
+                    // Where the points more than 45 degrees off lie: by face, with the radius of
+                    // the surfaces that hold them and their range.
+                    std::vector<std::uint64_t> bad(scene.faces().size(), 0), all(bad.size(), 0);
+                    std::vector<double> radius_sum(bad.size(), 0), range_sum(bad.size(), 0);
+                    std::vector<std::uint64_t> unreg(bad.size(), 0), total(bad.size(), 0);
+                    for (std::size_t i = 0; i < cloud.size(); ++i) {
+                        const std::int32_t f = cloud.labels[i], l = r.labels[i];
+                        if (f >= 0 && is_finite(cloud.points[i])) {
+                            ++total[std::size_t(f)];
+                            if (l < 0) ++unreg[std::size_t(f)];
+                        }
+                        if (f < 0 || l < 0 || !scene.faces()[std::size_t(f)].planar()) continue;
+                        const Surface& s = r.surfaces[std::size_t(l)];
+                        const Vec3d p = cloud.points[i].cast<double>();
+                        ++all[std::size_t(f)];
+                        const double err =
+                            axis_angle_between(s.normal, scene.normal_at(f, p)) * 180 / M_PI;
+                        if (err <= 45) continue;
+                        ++bad[std::size_t(f)];
+                        radius_sum[std::size_t(f)] += s.radius;
+                        range_sum[std::size_t(f)] +=
+                            (p - cloud.scan_origins[cloud.scan_index[i]]).norm();
+                    }
+                    if (std::getenv("STUDY_SURFACES")) {
+                        std::vector<std::uint64_t> bad_of(r.surfaces.size(), 0);
+                        std::vector<std::int32_t> face_of(r.surfaces.size(), -1);
+                        for (std::size_t i = 0; i < cloud.size(); ++i) {
+                            const std::int32_t f = cloud.labels[i], l = r.labels[i];
+                            if (f < 0 || l < 0 || !scene.faces()[std::size_t(f)].planar()) continue;
+                            const Surface& s = r.surfaces[std::size_t(l)];
+                            const double err =
+                                axis_angle_between(
+                                    s.normal, scene.normal_at(f, cloud.points[i].cast<double>())) *
+                                180 / M_PI;
+                            if (err > 45) {
+                                ++bad_of[std::size_t(l)];
+                                face_of[std::size_t(l)] = f;
+                            }
+                        }
+                        std::vector<std::size_t> ids(r.surfaces.size());
+                        for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = k;
+                        std::partial_sort(
+                            ids.begin(), ids.begin() + 12, ids.end(),
+                            [&](std::size_t a, std::size_t b) { return bad_of[a] > bad_of[b]; });
+                        for (std::size_t q = 0; q < 12; ++q) {
+                            const Surface& s = r.surfaces[ids[q]];
+                            std::printf(
+                                "      surface %zu: %llu bad of %u (face %d), r %.0f mm, "
+                                "n %u, tol %.1f mm, ev %.2f %.2f %.2f mm2, home %.3f "
+                                "%.3f %.3f, normal %.2f %.2f %.2f\n",
+                                ids[q], static_cast<unsigned long long>(bad_of[ids[q]]),
+                                s.point_count, face_of[ids[q]], s.radius * 1000, s.neighbours,
+                                s.tolerance * 1000, s.eigenvalues[0] * 1e6, s.eigenvalues[1] * 1e6,
+                                s.eigenvalues[2] * 1e6, s.home.x(), s.home.y(), s.home.z(),
+                                s.normal.x(), s.normal.y(), s.normal.z());
+                        }
+                    }
+                    if (const char* at = std::getenv("STUDY_AT")) {
+                        // Every point within 30 mm of x,y,z: its scan, truth, label and the
+                        // distance to its own surface's plane, and to the nearest surface's.
+                        double x, y, z;
+                        std::sscanf(at, "%lf,%lf,%lf", &x, &y, &z);
+                        const Vec3d c(x, y, z);
+                        for (std::size_t i = 0; i < cloud.size(); ++i) {
+                            const Vec3d p = cloud.points[i].cast<double>();
+                            if ((p - c).norm() > 0.03) continue;
+                            const std::int32_t l = r.labels[i];
+                            double d = -1, tol = -1, rad = -1;
+                            if (l >= 0) {
+                                const Surface& s = r.surfaces[std::size_t(l)];
+                                d = std::abs(s.normal.dot(p - s.centroid));
+                                tol = s.tolerance;
+                                rad = s.radius;
+                            }
+                            std::printf(
+                                "AT %7.1f %7.1f %7.1f scan %u truth %3d label %6d d %.1f "
+                                "tol %.1f r %.0f\n",
+                                1000 * (p.x() - x), 1000 * (p.y() - y), 1000 * (p.z() - z),
+                                cloud.scan_index[i], cloud.labels[i], l, 1000 * d, 1000 * tol,
+                                1000 * rad);
+                        }
+                    }
+                    if (const char* uf = std::getenv("STUDY_UNREG_FACE")) {
+                        const std::int32_t face = std::atoi(uf);
+                        for (std::size_t i = 0; i < cloud.size(); ++i) {
+                            if (cloud.labels[i] != face || r.labels[i] >= 0) continue;
+                            const Vec3d p = cloud.points[i].cast<double>();
+                            std::printf("UNREG %.3f %.3f %.3f scan %u range %.2f\n", p.x(), p.y(),
+                                        p.z(), cloud.scan_index[i],
+                                        (p - cloud.scan_origins[cloud.scan_index[i]]).norm());
+                        }
+                    }
+                    if (const char* dump = std::getenv("STUDY_DUMP")) {
+                        const auto id = static_cast<std::size_t>(std::atoll(dump));
+                        if (id < r.surfaces.size()) {
+                            const Surface& s = r.surfaces[id];
+                            const Vec3d origin = cloud.scan_origins[0];
+                            for (std::size_t i = 0; i < cloud.size(); ++i) {
+                                const Vec3d p = cloud.points[i].cast<double>();
+                                if ((p - s.home).norm() > s.radius) continue;
+                                const Vec3d q = p - s.home;
+                                std::printf(
+                                    "DUMP %8.2f %8.2f %8.2f truth %4d label %6d scan %u "
+                                    "range %.4f\n",
+                                    q.x() * 1000, q.y() * 1000, q.z() * 1000, cloud.labels[i],
+                                    r.labels[i], cloud.scan_index[i], (p - origin).norm());
+                            }
+                        }
+                    }
+                    for (std::size_t f = 0; f < bad.size(); ++f) {
+                        if (unreg[f] < 50) continue;
+                        std::printf("      face %zu (%s): %llu of %llu unregistered\n", f,
+                                    scene.description()
+                                        .primitives[std::size_t(scene.faces()[f].primitive)]
+                                        .name.c_str(),
+                                    static_cast<unsigned long long>(unreg[f]),
+                                    static_cast<unsigned long long>(total[f]));
+                    }
+                    for (std::size_t f = 0; f < bad.size(); ++f) {
+                        if (bad[f] < 50) continue;
+                        std::printf(
+                            "      face %zu (%s): %llu of %llu > 45 deg, radius %.0f mm, "
+                            "range %.2f m\n",
+                            f,
+                            scene.description()
+                                .primitives[std::size_t(scene.faces()[f].primitive)]
+                                .name.c_str(),
+                            static_cast<unsigned long long>(bad[f]),
+                            static_cast<unsigned long long>(all[f]),
+                            1000 * radius_sum[f] / double(bad[f]), range_sum[f] / double(bad[f]));
+                    }
+                }
+                std::fflush(stdout);
+            }
+        }
+    }
+    return 0;
+}
