@@ -12,8 +12,11 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/cloud_io.hpp"
+#include "surfgrow/io/poses_file.hpp"
 #include "surfgrow/io/raw_scan_format.hpp"
 #include "surfgrow/io/results_io.hpp"
+#include "surfgrow/scanner/builtin_scenes.hpp"
+#include "surfgrow/scanner/scene.hpp"
 
 namespace surfgrow {
 namespace {
@@ -151,6 +154,54 @@ TEST_F(CliScan, GrowTurnsNormalsTowardEachPointsOwnScanAndEvalMeasuresIt) {
         surfgrow(cat({"eval ", q(out), " --truth ", q(scan_dir()), " --require 'speed>=1'"}));
     EXPECT_EQ(bad.code, static_cast<int>(ErrorCode::kUsage)) << bad.out;
     EXPECT_FALSE(fs::exists(out / "eval.json"));
+}
+
+TEST_F(CliScan, OnTheTiltAxisWithPoseErrorsAndTheEvalShowsTheTail) {
+    // The laser on the tilt axis and fused with recorded poses 2 mm and 0.1 degree off: the
+    // manifest says so, the poses file holds the poses the cloud was fused with, and the eval
+    // reports the tails, by band and incidence, for the patches and through the bound planes.
+    const fs::path scan = tmp_.path() / "axis";
+    const CliRun s = surfgrow(cat({"scan --scene corridor --poses 2 --optical-offset 0 ",
+                                   "--pose-error 2mm --pose-error-angle 0.1 -q -o ", q(scan)}));
+    ASSERT_EQ(s.code, 0) << s.out;
+    const auto manifest = read_json(scan / "scan.json");
+    EXPECT_EQ(manifest.at("optical_offset_m").get<double>(), 0.0);
+    const auto path = scanner::scan_poses(scanner::corridor_scene().scanner, 2);
+    const auto recorded = io::read_poses_file(scan / "poses.txt");
+    ASSERT_EQ(recorded.size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) {
+        const double moved = (recorded[k].translation() - path[k].translation()).norm();
+        EXPECT_GT(moved, 0.0);
+        EXPECT_LT(moved, 0.02);  // under 6 sigma per axis
+    }
+    const fs::path out = tmp_.path() / "axis-out";
+    ASSERT_EQ(
+        surfgrow(cat({"grow ", q(scan / "cloud.ply"), " -o ", q(out), " --no-picture -q"})).code,
+        0);
+    const auto surfaces = read_json(out / "surfaces.json");
+    EXPECT_EQ(surfaces.at("parameters").at("plane_test"), "disk");
+    EXPECT_FALSE(surfaces.at("summary").at("noise_sigma_by_range").at("sigma").empty());
+    const CliRun e = surfgrow(cat({"eval ", q(out), " --truth ", q(scan),
+                                   " --require 'normal_over_45<=0.5%,planes_normal_p95<=2'"}));
+    ASSERT_EQ(e.code, 0) << e.out;
+    EXPECT_NE(e.out.find("> 45 deg"), std::string::npos) << e.out;
+    EXPECT_NE(e.out.find("bound planes"), std::string::npos) << e.out;
+    EXPECT_NE(e.out.find("incidence"), std::string::npos) << e.out;
+    const auto j = read_json(out / "eval.json");
+    EXPECT_FALSE(j.at("incidence").empty());
+    EXPECT_FALSE(j.at("through_planes").is_null());
+    EXPECT_GT(j.at("through_planes").at("faces_scored").get<int>(), 0);
+    // The paper's test is one option away, and a misspelt one is a usage error.
+    const CliRun paper =
+        surfgrow(cat({"grow ", q(scan / "cloud.ply"), " -o ", q(tmp_.path() / "paper"),
+                      " --no-picture -q ", "--plane-test paper --mu-max 24mm"}));
+    EXPECT_EQ(paper.code, 0) << paper.out;
+    EXPECT_EQ(read_json(tmp_.path() / "paper" / "surfaces.json").at("parameters").at("plane_test"),
+              "paper");
+    const CliRun bad = surfgrow(
+        cat({"grow ", q(scan / "cloud.ply"), " -o ", q(tmp_.path() / "bad"), " --plane-test eq2"}));
+    EXPECT_EQ(bad.code, static_cast<int>(ErrorCode::kUsage)) << bad.out;
+    EXPECT_NE(bad.out.find("disk or paper"), std::string::npos) << bad.out;
 }
 
 TEST_F(CliScan, EvalCatchesATamperedResult) {
@@ -306,6 +357,18 @@ TEST_F(CliScan, BadInputsGiveDistinctCodesAndNoOutput) {
                  {"scan2cloud ", q(scan / "scan-000.sgraw"), " --poses ", q(scan / "poses.txt")});
          },
          ErrorCode::kInvalidParameter, "2 poses for 1 raw scans"},
+        {"optical offset without unit",
+         [](auto&, auto&) { return std::string("scan --scene room-corner --optical-offset 40"); },
+         ErrorCode::kUsage, "unit"},
+        {"optical offset of a metre",
+         [](auto&, auto&) { return std::string("scan --scene room-corner --optical-offset 1.5m"); },
+         ErrorCode::kInvalidParameter, "--optical-offset"},
+        {"pose error of a metre",
+         [](auto&, auto&) { return std::string("scan --scene room-corner --pose-error 1m"); },
+         ErrorCode::kInvalidParameter, "--pose-error"},
+        {"negative pose error angle",
+         [](auto&, auto&) { return std::string("scan --scene room-corner --pose-error-angle -1"); },
+         ErrorCode::kInvalidParameter, "--pose-error-angle"},
         {"eval without truth folder",
          [](auto& d, auto&) {
              return cat({"eval ", q(d / "res"), " --truth ", q(d / "nothing")});

@@ -122,6 +122,48 @@ TEST(Evaluation, ATiltedSurfaceShowsItsTiltAsTheNormalError) {
     EXPECT_NEAR(r.surface_normal_deg.max, 10.0, 1e-9);
 }
 
+TEST(Evaluation, TheTailIsTheShareOfPointsBeyond10And45Degrees) {
+    Case c = base_case();
+    c.surfaces[0].normal = Vec3d(0, std::sin(20 * kDeg), std::cos(20 * kDeg));   // floor 20 off
+    c.surfaces[1].normal = Vec3d(-std::cos(60 * kDeg), std::sin(60 * kDeg), 0);  // wall 60 off
+    const EvalReport r = run(c);
+    EXPECT_DOUBLE_EQ(r.normal_over_10, 1.0);
+    EXPECT_DOUBLE_EQ(r.normal_over_45, 0.5);
+    // By range band from the viewpoint (0, 0, 1): the floor lies 1.0-1.3 m, the wall 1.1-1.6 m.
+    std::uint64_t counted = 0;
+    for (const BandReport& b : r.bands) {
+        if (b.normal_deg.count == 0) continue;
+        counted += b.normal_deg.count;
+        EXPECT_NEAR(b.over_10, 1.0, 1e-12);
+        EXPECT_GE(b.over_45, 0.0);
+        EXPECT_LE(b.over_45, 1.0);
+    }
+    EXPECT_EQ(counted, 200u);
+    // By incidence: every planar point is in one 15-degree band, the floor's from 0 to 45
+    // degrees (the viewpoint 1 m above its middle, its corners 0.64 m away), the wall's
+    // beyond 45 (seen from x = 0, 1 m away in x, up to 0.45 m aside).
+    ASSERT_EQ(r.incidence.size(), 6u);
+    std::uint64_t planar = 0;
+    for (const IncidenceReport& b : r.incidence) planar += b.planar.points;
+    EXPECT_EQ(planar, 200u);
+    EXPECT_DOUBLE_EQ(share_above(std::vector<double>{1, 20, 50}, 10), 2.0 / 3.0);
+    EXPECT_TRUE(std::isnan(share_above(std::vector<double>{}, 10)));
+}
+
+TEST(Evaluation, TheWorstBandIsTheLowestRegisteredShareOfTheBandsThatCount) {
+    Case c = base_case();
+    for (int k = 100; k < 150; ++k) c.labels[static_cast<std::size_t>(k)] = -1;  // half the wall
+    const EvalReport r = run(c);
+    const double worst = r.worst_band_planar(10);
+    EXPECT_LT(worst, 1.0);
+    EXPECT_GT(worst, 0.0);
+    for (const BandReport& b : r.bands) {
+        if (b.planar.points < 10) continue;
+        EXPECT_GE(b.planar.fraction(), worst);
+    }
+    EXPECT_TRUE(std::isnan(r.worst_band_planar(1000)));  // no band holds 1000
+}
+
 TEST(Evaluation, NormalsAreComparedAsLinesButOrientationIsCheckedToo) {
     Case c = base_case();
     for (Surface& s : c.surfaces) s.normal = -s.normal;

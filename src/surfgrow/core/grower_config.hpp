@@ -50,7 +50,7 @@ struct GrowerConfig {
     /// Registration tolerance in noise sigmas (kDisk, plane_tolerance 0): a surface takes points
     /// within this many times the noise measured at its range of its plane, at least mu / 6 and
     /// at most its radius; a point already taken goes to the surface it fits best.
-    double noise_sigmas = 3.5;
+    double noise_sigmas = 4.0;
     /// A new surface must register at least this many points not yet registered; a home point in
     /// a small gap between earlier surfaces is left to the leftover pass instead of creating a
     /// near-duplicate surface. Raises the data reduction at equal registration.
