@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
         cfg.min_pts = args.integer("min-pts", 10);
         cfg.threads = args.integer("threads", 0);
         cfg.seed = static_cast<std::uint64_t>(args.num("seed", 1));
-        // --mu-max: the adaptive radius's ceiling; absent, the library's default (2 mu).
+        // --mu-max: the adaptive radius's ceiling; absent, the library's default (8 mu).
         if (const double mu_max = args.num("mu-max", 0.0); mu_max > 0)
             cfg.adaptive_factor = mu_max / cfg.mu;
         rep.threads = cfg.threads;
