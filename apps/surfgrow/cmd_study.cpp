@@ -199,7 +199,8 @@ void add_study_command(CLI::App& app) {
                     "whole)")
         ->capture_default_str();
     cmd->add_option("--scene", a->scene,
-                    "Built-in scene (ibeam-channel, room-corner, pipes) or a scene file (.json)")
+                    "Built-in scene (ibeam-channel, room-corner, pipes, corridor, stairs) or a "
+                    "scene file (.json)")
         ->capture_default_str();
     cmd->add_option("--poses", a->poses,
                     "Scans simulated along the scene's path; a test uses the fewest that hold its "
