@@ -79,6 +79,8 @@ int main(int argc, char** argv) {
         } else if (arg == "--thickness") {
             config.thickness_sigmas = std::atof(next);
             ++a;
+        } else if (arg == "--no-attach") {
+            config.attach_leftovers = false;
         } else if (arg == "--pose-seed") {
             pose_seed = std::strtoull(next, nullptr, 10);
             ++a;

@@ -1,10 +1,12 @@
 // surfgrow in the peers' harness: the library called as the README shows, timed like the peers.
 //
 //   peer_surfgrow CLOUD --out DIR [--mu 0.012] [--min-pts 10] [--threads 0] [--seed 1]
-//                 [--mu-max 0] [--planes] [--min-seconds 1] [--max-repeats 5]
+//                 [--mu-max 0] [--paper] [--planes] [--min-seconds 1] [--max-repeats 5]
 //
 // I/O = io::read_cloud. Algorithm = grow_surfaces (cube index, growing, leftover pass, normal
 // pooling, statistics), everything else at its default, as `surfgrow grow` runs it.
+// --paper: the paper's plane test, eq. (2) alone, with the adaptive radius up to 2 mu and normal
+// pooling over 2 mu (surfgrow's defaults before the disk test).
 // --planes: also compute_bound_planes (planes.json's planes: patches merged into faces, a plane
 // fitted to each face's points, boundary polygons), timed with the growing; the segments are then
 // the bound planes, like the peers' planes.
@@ -23,7 +25,8 @@ int main(int argc, char** argv) {
         peers::Report rep;
         rep.tool = "surfgrow";
         const bool bound = args.has("planes");
-        rep.method = bound ? "planes" : "grow";
+        const bool paper = args.has("paper");
+        rep.method = bound ? "planes" : paper ? "grow-paper" : "grow";
         rep.input = args.input();
         rep.baseline_rss = peers::proc_status_bytes("VmRSS");
 
@@ -41,6 +44,11 @@ int main(int argc, char** argv) {
         cfg.threads = args.integer("threads", 0);
         cfg.seed = static_cast<std::uint64_t>(args.num("seed", 1));
         // --mu-max: the adaptive radius's ceiling; absent, the library's default (8 mu).
+        if (paper) {
+            cfg.plane_test = surfgrow::PlaneTest::kPaper;
+            cfg.adaptive_factor = 2.0;
+            cfg.pool_radius = 2 * cfg.mu;
+        }
         if (const double mu_max = args.num("mu-max", 0.0); mu_max > 0)
             cfg.adaptive_factor = mu_max / cfg.mu;
         rep.threads = cfg.threads;

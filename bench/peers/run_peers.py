@@ -53,9 +53,9 @@ REAL_SCANS = [
 
 TOOLS = [
     ("surfgrow", "grow"),
-    # The README's answer to sparse far ranges: the radius doubles up to 4 mu where a home point
-    # has too few neighbours (k-nearest peers adapt their neighbourhood to density implicitly).
-    ("surfgrow", "grow-adaptive"),
+    # The paper's plane test, eq. (2) alone, with the adaptive radius up to 2 mu and pooling over
+    # 2 mu: surfgrow's defaults before the disk test (issue 13), for before-and-after in one run.
+    ("surfgrow", "grow-paper"),
     # What a robot takes its faces from: the patches merged into bound planes (planes.json), a
     # plane fitted to each face's points. The peers' segments are whole planes too.
     ("surfgrow", "planes"),
@@ -237,8 +237,8 @@ def tool_command(build, tool, method, cloud_path, out, p, threads, a):
     if tool == "surfgrow":
         return [str(build / "bench/peers/peer_surfgrow"), cloud_path, "--out", out, "--mu",
                 str(p["mu"]), "--min-pts", str(p["min_pts"]), "--threads", str(threads),
-                "--seed", "1"] + (["--mu-max", str(4 * p["mu"])] if method == "grow-adaptive"
-                                  else []) + (["--planes"] if method == "planes" else []) + rep
+                "--seed", "1"] + (["--paper"] if method == "grow-paper" else []) + (
+                    ["--planes"] if method == "planes" else []) + rep
     common = ["--out", out, "--k", str(p["k"]), "--tol", str(p["tol"]), "--min-pts",
               str(p["min_pts"]), "--min-plane", str(p["min_plane"])]
     if tool == "pcl":
@@ -519,7 +519,7 @@ def headline(results, cloud_file, method="grow"):
 
 
 HEADLINE_CLOUDS = [("channel-1scan", "single scan"), ("channel-4scans", "4 fused scans")]
-SG_METHODS = ["grow", "grow-adaptive", "planes"]
+SG_METHODS = ["grow", "grow-paper", "planes"]
 
 
 def write_report(a, results, path):
