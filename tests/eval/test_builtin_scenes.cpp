@@ -113,10 +113,9 @@ struct Held {
     double fused_band = kMinRegistered;  // per range band, fused scans
 };
 Held held_to(const std::string& scene) {
-    if (scene == "ibeam-channel") return {0.008, 0.75, 0.985};
+    if (scene == "ibeam-channel") return {0.008, 0.75, kMinRegistered};
     if (scene == "pipes") return {0.0095, 0.6, kMinRegistered};
     if (scene == "corridor") return {kMaxShareOver45, 0.8, 0.95};
-    if (scene == "room-corner") return {kMaxShareOver45, kMinFacesDetected, 0.975};
     return {};
 }
 
