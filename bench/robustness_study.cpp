@@ -104,22 +104,20 @@ int main(int argc, char** argv) {
                 const GrowResult r = grow_surfaces(cloud, config);
                 const double secs =
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-                const eval::EvalReport e = eval::evaluate(cloud, r, scene.faces());
+                eval::EvalReport e = eval::evaluate(cloud, r, scene.faces());
                 BoundPlaneConfig pc;
                 pc.mu = config.mu;
-                const BoundPlanes planes = compute_bound_planes(cloud, r, pc);
-                const eval::EvalReport ep =
-                    eval::evaluate_through_planes(cloud, r, planes, scene.faces());
-                const eval::FaceDetection fd =
-                    eval::plane_detections(cloud, r, planes, scene.faces());
+                eval::add_plane_figures(e, cloud, eval::GrowOutcome{r.surfaces, r.labels, &r.stats},
+                                        compute_bound_planes(cloud, r, pc), scene.faces());
                 std::printf(
                     "%-14s %4.0f %5d %8zu | %6.2f%% %6.2f%% | %6.2f %6.2f %5.2f%% %5.2f%% | %6.2f "
                     "%5.2f%% | %2llu/%-2llu | %6.3f\n",
                     name.c_str(), offset * 1000, poses, cloud.size(), 100 * e.planar.fraction(),
                     100 * e.worst_band_planar(), e.normal_deg.median, e.normal_deg.p95,
-                    100 * e.normal_over_10, 100 * e.normal_over_45, ep.normal_deg.p95,
-                    100 * ep.normal_over_45, static_cast<unsigned long long>(fd.correct),
-                    static_cast<unsigned long long>(fd.faces), secs);
+                    100 * e.normal_over_10, 100 * e.normal_over_45, e.planes.normal_deg.p95,
+                    100 * e.planes.over_45,
+                    static_cast<unsigned long long>(e.planes.faces_detected),
+                    static_cast<unsigned long long>(e.planes.faces_scored), secs);
                 if (std::getenv("STUDY_TIMES"))
                     std::printf(
                         "      index %.3f grow %.3f attach %.3f finish %.3f s; tried %llu, "

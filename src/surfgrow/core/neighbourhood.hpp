@@ -118,54 +118,19 @@ void for_each_other_in_runs_within(const CubeIndex& index, std::span<const CubeI
     detail::runs_within(index, runs, p, r2, labels, label, f);
 }
 
-/// Sets labels[i] = label for every still unregistered point (labels[i] < 0) of `runs` within
-/// `radius` of `home` and within `tolerance` of the plane through home + `centroid` with unit
-/// `normal` (local coordinates, relative to home). Returns how many points it registered.
-inline std::uint32_t register_points(const CubeIndex& index, std::span<const CubeIndex::Range> runs,
-                                     const Vec3f& home, float radius, const Vec3f& normal,
-                                     const Vec3f& centroid, float tolerance,
-                                     std::span<std::int32_t> labels, std::int32_t label) {
+/// Calls f(j, d) for every point j of `runs` within `radius` of `home` and within `tolerance` of
+/// the plane through home + `centroid` with unit `normal` (local coordinates, relative to home),
+/// d its distance to the plane, in index order: the tests in SIMD, the calls for the points that
+/// pass.
+template <class F>
+void for_each_on_plane(const CubeIndex& index, std::span<const CubeIndex::Range> runs,
+                       const Vec3f& home, float radius, const Vec3f& normal, const Vec3f& centroid,
+                       float tolerance, F&& f) {
     constexpr int W = static_cast<int>(FloatV::size());
     const FloatV lane([](int l) { return static_cast<float>(l); });
     const FloatV hx = home.x(), hy = home.y(), hz = home.z(), r2 = radius * radius;
     const FloatV nx = normal.x(), ny = normal.y(), nz = normal.z();
     const FloatV off = normal.dot(centroid), tol = tolerance;
-    const float* X = index.xs();
-    const float* Y = index.ys();
-    const float* Z = index.zs();
-    std::uint32_t registered = 0;
-    for (const CubeIndex::Range& run : runs) {
-        for (std::uint32_t i = run.begin; i < run.end; i += W) {
-            const FloatV dx = FloatV(X + i, simd::element_aligned) - hx;
-            const FloatV dy = FloatV(Y + i, simd::element_aligned) - hy;
-            const FloatV dz = FloatV(Z + i, simd::element_aligned) - hz;
-            const FloatV dist = simd::abs(dx * nx + dy * ny + dz * nz - off);
-            const auto m = (dx * dx + dy * dy + dz * dz <= r2) && (dist <= tol) &&
-                           (lane < static_cast<float>(run.end - i));
-            if (simd::none_of(m)) continue;
-            std::uint32_t bits = lane_bits(m);
-            while (bits) {
-                const std::uint32_t j = i + static_cast<std::uint32_t>(std::countr_zero(bits));
-                bits &= bits - 1;
-                if (labels[j] < 0) {
-                    labels[j] = label;
-                    ++registered;
-                }
-            }
-        }
-    }
-    return registered;
-}
-
-/// Appends to `out` the distance to the plane (unit `normal`, offset `normal . c` for a point c
-/// of it, local coordinates relative to home) of every point of `runs` within `radius` of home.
-inline void plane_distances(const CubeIndex& index, std::span<const CubeIndex::Range> runs,
-                            const Vec3f& home, float radius, const Vec3f& normal, float offset,
-                            std::vector<float>& out) {
-    constexpr int W = static_cast<int>(FloatV::size());
-    const FloatV lane([](int l) { return static_cast<float>(l); });
-    const FloatV hx = home.x(), hy = home.y(), hz = home.z(), r2 = radius * radius;
-    const FloatV nx = normal.x(), ny = normal.y(), nz = normal.z(), off = offset;
     const float* X = index.xs();
     const float* Y = index.ys();
     const float* Z = index.zs();
@@ -176,63 +141,35 @@ inline void plane_distances(const CubeIndex& index, std::span<const CubeIndex::R
             const FloatV dy = FloatV(Y + i, simd::element_aligned) - hy;
             const FloatV dz = FloatV(Z + i, simd::element_aligned) - hz;
             const FloatV dist = simd::abs(dx * nx + dy * ny + dz * nz - off);
-            const auto m =
-                (dx * dx + dy * dy + dz * dz <= r2) && (lane < static_cast<float>(run.end - i));
+            const auto m = (dx * dx + dy * dy + dz * dz <= r2) && (dist <= tol) &&
+                           (lane < static_cast<float>(run.end - i));
             if (simd::none_of(m)) continue;
             dist.copy_to(d, simd::element_aligned);
             std::uint32_t bits = lane_bits(m);
             while (bits) {
-                out.push_back(d[std::countr_zero(bits)]);
+                const int l = std::countr_zero(bits);
                 bits &= bits - 1;
+                f(i + static_cast<std::uint32_t>(l), d[l]);
             }
         }
     }
 }
 
-/// Moments (as gather_moments) of the points of `runs` within `radius` of home and within
-/// `tolerance` of the plane (unit `normal`, offset `offset`, relative to home): the inliers a
-/// neighbourhood is refitted on.
-[[nodiscard]] inline Moments gather_moments_near_plane(const CubeIndex& index,
-                                                       std::span<const CubeIndex::Range> runs,
-                                                       const Vec3f& home, float radius,
-                                                       const Vec3f& normal, float offset,
-                                                       float tolerance) {
-    constexpr int W = static_cast<int>(FloatV::size());
-    const FloatV lane([](int l) { return static_cast<float>(l); });
-    const FloatV hx = home.x(), hy = home.y(), hz = home.z(), r2 = radius * radius;
-    const FloatV nx = normal.x(), ny = normal.y(), nz = normal.z(), off = offset;
-    const FloatV tol = tolerance;
-    FloatV n = 0, sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
-    const float* X = index.xs();
-    const float* Y = index.ys();
-    const float* Z = index.zs();
-    for (const CubeIndex::Range& run : runs) {
-        for (std::uint32_t i = run.begin; i < run.end; i += W) {
-            const FloatV dx = FloatV(X + i, simd::element_aligned) - hx;
-            const FloatV dy = FloatV(Y + i, simd::element_aligned) - hy;
-            const FloatV dz = FloatV(Z + i, simd::element_aligned) - hz;
-            const auto m = (dx * dx + dy * dy + dz * dz <= r2) &&
-                           (simd::abs(dx * nx + dy * ny + dz * nz - off) <= tol) &&
-                           (lane < static_cast<float>(run.end - i));
-            simd::where(m, n) += 1.f;
-            simd::where(m, sx) += dx;
-            simd::where(m, sy) += dy;
-            simd::where(m, sz) += dz;
-            simd::where(m, sxx) += dx * dx;
-            simd::where(m, sxy) += dx * dy;
-            simd::where(m, sxz) += dx * dz;
-            simd::where(m, syy) += dy * dy;
-            simd::where(m, syz) += dy * dz;
-            simd::where(m, szz) += dz * dz;
-        }
-    }
-    Moments mo;
-    auto sum = [](const FloatV& v) { return static_cast<double>(simd::reduce(v)); };
-    mo.n = sum(n);
-    mo.sum = {sum(sx), sum(sy), sum(sz)};
-    mo.sum_sq << sum(sxx), sum(sxy), sum(sxz), sum(sxy), sum(syy), sum(syz), sum(sxz), sum(syz),
-        sum(szz);
-    return mo;
+/// Sets labels[i] = label for every still unregistered point (labels[i] < 0) of `runs` within
+/// `radius` of `home` and within `tolerance` of the plane through home + `centroid` with unit
+/// `normal` (local coordinates, relative to home). Returns how many points it registered.
+inline std::uint32_t register_points(const CubeIndex& index, std::span<const CubeIndex::Range> runs,
+                                     const Vec3f& home, float radius, const Vec3f& normal,
+                                     const Vec3f& centroid, float tolerance,
+                                     std::span<std::int32_t> labels, std::int32_t label) {
+    std::uint32_t registered = 0;
+    for_each_on_plane(index, runs, home, radius, normal, centroid, tolerance,
+                      [&](std::uint32_t j, float) {
+                          if (labels[j] >= 0) return;
+                          labels[j] = label;
+                          ++registered;
+                      });
+    return registered;
 }
 
 /// A neighbourhood's inliers in a plane's own frame: q = (u, v, r), the coordinates along two
@@ -316,43 +253,19 @@ inline std::uint32_t register_best_fit(const CubeIndex& index,
                                        float tolerance, std::span<std::int32_t> labels,
                                        std::span<float> distance, std::int32_t label,
                                        std::vector<TakenPoint>& taken) {
-    constexpr int W = static_cast<int>(FloatV::size());
-    const FloatV lane([](int l) { return static_cast<float>(l); });
-    const FloatV hx = home.x(), hy = home.y(), hz = home.z(), r2 = radius * radius;
-    const FloatV nx = normal.x(), ny = normal.y(), nz = normal.z();
-    const FloatV off = normal.dot(centroid), tol = tolerance;
-    const float* X = index.xs();
-    const float* Y = index.ys();
-    const float* Z = index.zs();
     std::uint32_t registered = 0;
-    alignas(64) float d[FloatV::size()];
-    for (const CubeIndex::Range& run : runs) {
-        for (std::uint32_t i = run.begin; i < run.end; i += W) {
-            const FloatV dx = FloatV(X + i, simd::element_aligned) - hx;
-            const FloatV dy = FloatV(Y + i, simd::element_aligned) - hy;
-            const FloatV dz = FloatV(Z + i, simd::element_aligned) - hz;
-            const FloatV dist = simd::abs(dx * nx + dy * ny + dz * nz - off);
-            const auto m = (dx * dx + dy * dy + dz * dz <= r2) && (dist <= tol) &&
-                           (lane < static_cast<float>(run.end - i));
-            if (simd::none_of(m)) continue;
-            dist.copy_to(d, simd::element_aligned);
-            std::uint32_t bits = lane_bits(m);
-            while (bits) {
-                const int l = std::countr_zero(bits);
-                const std::uint32_t j = i + static_cast<std::uint32_t>(l);
-                bits &= bits - 1;
-                if (labels[j] < 0) {
-                    labels[j] = label;
-                    distance[j] = d[l];
-                    ++registered;
-                } else if (labels[j] != label && d[l] < distance[j]) {
-                    taken.push_back({j, labels[j], distance[j]});
-                    labels[j] = label;
-                    distance[j] = d[l];
-                }
-            }
-        }
-    }
+    for_each_on_plane(index, runs, home, radius, normal, centroid, tolerance,
+                      [&](std::uint32_t j, float d) {
+                          if (labels[j] < 0) {
+                              labels[j] = label;
+                              distance[j] = d;
+                              ++registered;
+                          } else if (labels[j] != label && d < distance[j]) {
+                              taken.push_back({j, labels[j], distance[j]});
+                              labels[j] = label;
+                              distance[j] = d;
+                          }
+                      });
     return registered;
 }
 

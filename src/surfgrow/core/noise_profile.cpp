@@ -15,15 +15,21 @@ double median(std::vector<double>& v) {
 
 constexpr std::size_t kMaxBands = 4096;
 
+// One sigma for all ranges: the median of every sample, if there are enough; none otherwise.
+std::vector<double> one_for_all(std::span<const ThicknessSample> samples, double floor) {
+    std::vector<double> all;
+    for (const ThicknessSample& s : samples) all.push_back(s.thickness);
+    if (all.size() < NoiseProfile::kMinSamples) return {};
+    return {std::max(median(all), floor)};
+}
+
 }  // namespace
 
 NoiseProfile::NoiseProfile(std::span<const ThicknessSample> samples, double band, double floor) {
     bool ranged = band > 0;
     for (const ThicknessSample& s : samples) ranged = ranged && s.range >= 0;
     if (!ranged) {
-        std::vector<double> all;
-        for (const ThicknessSample& s : samples) all.push_back(s.thickness);
-        if (all.size() >= kMinSamples) sigma_ = {std::max(median(all), floor)};
+        sigma_ = one_for_all(samples, floor);
         return;
     }
     band_ = band;
@@ -42,10 +48,8 @@ NoiseProfile::NoiseProfile(std::span<const ThicknessSample> samples, double band
         last = b;
     }
     if (first == by_band.size()) {  // too few in every band: one value for all
-        std::vector<double> all;
-        for (const ThicknessSample& s : samples) all.push_back(s.thickness);
         band_ = 0;
-        if (all.size() >= kMinSamples) sigma_ = {std::max(median(all), floor)};
+        sigma_ = one_for_all(samples, floor);
         return;
     }
     sigma_.assign(last + 1, 0);

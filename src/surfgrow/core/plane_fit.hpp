@@ -59,11 +59,11 @@ struct PlaneFit {
     return orthogonal_to.unitOrthogonal();
 }
 
-/// True when the cubic's eigenvalues already show, with a margin far above their error, that the
-/// neighbourhood fails eq. (2): the full decomposition can be skipped.
-[[nodiscard]] inline bool clearly_not_planar(const Moments& m, double alpha) {
-    const Vec3d e = rough_eigenvalues(covariance(m));
-    return e[0] * alpha > e[1] * (1 + 1e-6) + 1e-6 * e[2];
+/// True when the cubic's eigenvalues (rough_eigenvalues, ascending) already show, with a margin
+/// far above their error, that the neighbourhood fails eq. (2): the full decomposition can be
+/// skipped.
+[[nodiscard]] inline bool clearly_not_planar(const Vec3d& rough, double alpha) {
+    return rough[0] * alpha > rough[1] * (1 + 1e-6) + 1e-6 * rough[2];
 }
 
 /// Paper eq. (2): the neighbourhood is a plane when min(lambda) < mid(lambda) / alpha.

@@ -329,7 +329,7 @@ Neighbourhood fit_neighbourhood(const GrowContext& ctx, std::uint32_t home, cons
             // Most edge and clutter neighbourhoods fail eq. (2) plainly: the cubic's eigenvalues
             // say so at a third of the full solve's cost.
             const Vec3d rough = rough_eigenvalues(covariance(m));
-            if (rough[0] * cfg.alpha > rough[1] * (1 + 1e-6) + 1e-6 * rough[2]) {
+            if (clearly_not_planar(rough, cfg.alpha)) {
                 nb.verdict = PlaneVerdict::kThick;
                 // Only a full disk as thick as the noise thins out in a larger ball; a thicker
                 // one is an edge or a step, a partial one a boundary or a corner.

@@ -146,11 +146,11 @@ EvalReport evaluate(const PointCloud& cloud, const GrowOutcome& grown,
             if (planar) count(band->planar, registered);
             if (planar && in_workspace) count(r.planar_workspace, registered);
         }
+        const Vec3d truth_normal = face ? face->normal_at(world) : Vec3d::Zero();
         BandAccumulator* inc = nullptr;
         if (origin && planar) {
             const Vec3d sight = p - *origin;
-            const double cos_i =
-                std::abs(face->normal_at(world).dot(sight)) / std::max(sight.norm(), 1e-300);
+            const double cos_i = std::abs(truth_normal.dot(sight)) / std::max(sight.norm(), 1e-300);
             const double deg = std::acos(std::min(1.0, cos_i)) * kDegPerRad;
             inc = &incidence[std::min(static_cast<std::size_t>(deg / kIncidenceBandDeg),
                                       kIncidenceBands - 1)];
@@ -165,7 +165,6 @@ EvalReport evaluate(const PointCloud& cloud, const GrowOutcome& grown,
             continue;
         }
         pairs.push_back(static_cast<std::uint64_t>(sid) << 32 | static_cast<std::uint32_t>(truth));
-        const Vec3d truth_normal = face->normal_at(world);
         const double err = axis_angle_between(s.normal, truth_normal) * kDegPerRad;
         face_err[static_cast<std::size_t>(truth)].push_back(err);
         if (planar) {

@@ -122,7 +122,7 @@ struct EvalReport {
 
     /// The same normal figures with every registered point given its bound plane's normal
     /// (planes.json), and SegComp's correct detection of the planar faces by the bound planes;
-    /// filled by evaluate_through_planes() (plane_evaluation.hpp) where planes are known.
+    /// filled by add_plane_figures() (plane_evaluation.hpp) where planes are known.
     struct ThroughPlanes {
         bool known = false;
         Distribution normal_deg;

@@ -17,13 +17,6 @@ std::vector<Surface> surfaces_through_planes(std::span<const Surface> surfaces,
     return out;
 }
 
-EvalReport evaluate_through_planes(const PointCloud& cloud, const GrowResult& result,
-                                   const BoundPlanes& planes, std::span<const scanner::Face> faces,
-                                   const EvalOptions& options) {
-    const std::vector<Surface> through = surfaces_through_planes(result.surfaces, planes);
-    return evaluate(cloud, GrowOutcome{through, result.labels, &result.stats}, faces, options);
-}
-
 void add_plane_figures(EvalReport& report, const PointCloud& cloud, const GrowOutcome& grown,
                        const BoundPlanes& planes, std::span<const scanner::Face> faces) {
     const std::vector<Surface> through = surfaces_through_planes(grown.surfaces, planes);
@@ -42,13 +35,6 @@ void add_plane_figures(EvalReport& report, const PointCloud& cloud, const GrowOu
         correct_detections(cloud.labels, plane_labels(planes, grown.labels), 0.8, 500, planar);
     t.faces_scored = d.faces;
     t.faces_detected = d.correct;
-}
-
-FaceDetection plane_detections(const PointCloud& cloud, const GrowResult& result,
-                               const BoundPlanes& planes, std::span<const scanner::Face> faces) {
-    std::vector<std::uint8_t> planar(faces.size(), 0);
-    for (std::size_t f = 0; f < faces.size(); ++f) planar[f] = faces[f].planar() ? 1 : 0;
-    return correct_detections(cloud.labels, plane_labels(planes, result.labels), 0.8, 500, planar);
 }
 
 }  // namespace surfgrow::eval

@@ -16,21 +16,9 @@ namespace surfgrow::eval {
 [[nodiscard]] std::vector<Surface> surfaces_through_planes(std::span<const Surface> surfaces,
                                                            const BoundPlanes& planes);
 
-/// evaluate() with every registered point's normal taken from its bound plane.
-[[nodiscard]] EvalReport evaluate_through_planes(const PointCloud& cloud, const GrowResult& result,
-                                                 const BoundPlanes& planes,
-                                                 std::span<const scanner::Face> faces,
-                                                 const EvalOptions& options = {});
-
 /// Fills report.planes: the normal figures through the bound planes, and the faces detected.
 /// `grown` is what `report` evaluated.
 void add_plane_figures(EvalReport& report, const PointCloud& cloud, const GrowOutcome& grown,
                        const BoundPlanes& planes, std::span<const scanner::Face> faces);
-
-/// SegComp correct detection (T = 0.8) of the scene's planar faces with >= 500 points by the
-/// bound planes.
-[[nodiscard]] FaceDetection plane_detections(const PointCloud& cloud, const GrowResult& result,
-                                             const BoundPlanes& planes,
-                                             std::span<const scanner::Face> faces);
 
 }  // namespace surfgrow::eval
