@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -132,6 +133,13 @@ int main(int argc, char** argv) {
                         static_cast<unsigned long long>(r.stats.adapted_surfaces),
                         static_cast<unsigned long long>(r.stats.surfaces),
                         static_cast<unsigned long long>(r.stats.lone_surfaces));
+                if (std::getenv("STUDY_NOISE")) {
+                    std::printf("      noise sigma (band %.2f m):", r.stats.noise_band);
+                    for (double v : r.stats.noise_sigma) std::printf(" %.1f", v * 1000);
+                    std::printf("\n      layer sigma (band %.2f m):", r.stats.layer_band);
+                    for (double v : r.stats.layer_sigma) std::printf(" %.1f", v * 1000);
+                    std::printf("\n");
+                }
                 if (std::getenv("STUDY_BANDS")) {
                     for (const eval::BandReport& b : e.bands) {
                         if (b.planar.points < 200) continue;
@@ -150,6 +158,74 @@ int main(int argc, char** argv) {
                             b.from_deg, b.to_deg, static_cast<unsigned long long>(b.planar.points),
                             100 * b.planar.fraction(), b.normal_deg.p95, 100 * b.over_45);
                     }
+                }
+                if (std::getenv("STUDY_KINDS")) {
+                    // Each point > 45 deg off: is its surface wrong for its own majority face
+                    // (a fit across an edge), or right for another face (a point taken across
+                    // an edge)? And its distance to its surface's plane in noise sigmas.
+                    std::vector<std::map<std::int32_t, std::uint64_t>> votes(r.surfaces.size());
+                    for (std::size_t i = 0; i < cloud.size(); ++i)
+                        if (r.labels[i] >= 0) ++votes[std::size_t(r.labels[i])][cloud.labels[i]];
+                    std::vector<std::int32_t> major(r.surfaces.size(), -1);
+                    for (std::size_t k = 0; k < votes.size(); ++k) {
+                        std::uint64_t best = 0;
+                        for (auto [f, c] : votes[k])
+                            if (c > best) best = c, major[k] = f;
+                    }
+                    std::uint64_t wrong_fit = 0, taken = 0, unknown = 0, wrong_fit_pts = 0,
+                                  unknown_mixed = 0;
+                    std::vector<bool> seen(r.surfaces.size(), false);
+                    for (std::size_t i = 0; i < cloud.size(); ++i) {
+                        const std::int32_t f = cloud.labels[i], l = r.labels[i];
+                        if (f < 0 || l < 0 || !scene.faces()[std::size_t(f)].planar()) continue;
+                        const Surface& s = r.surfaces[std::size_t(l)];
+                        const Vec3d p = cloud.points[i].cast<double>();
+                        if (axis_angle_between(s.normal, scene.normal_at(f, p)) * 180 / M_PI <= 45)
+                            continue;
+                        const std::int32_t m = major[std::size_t(l)];
+                        if (m < 0 || !scene.faces()[std::size_t(m)].planar()) {
+                            ++unknown;
+                            if (m < 0) ++unknown_mixed;
+                            continue;
+                        }
+                        const double em =
+                            axis_angle_between(s.normal, scene.normal_at(m, s.home)) * 180 / M_PI;
+                        if (em > 20) {
+                            ++wrong_fit;
+                            if (!seen[std::size_t(l)]) seen[std::size_t(l)] = true, ++wrong_fit_pts;
+                        } else {
+                            ++taken;
+                        }
+                    }
+                    if (std::getenv("STUDY_MIXED")) {
+                        // The surfaces made mostly of points on no face (mixed pixels): their
+                        // incidence on the line of sight, size and shape.
+                        for (std::size_t k = 0; k < r.surfaces.size(); ++k) {
+                            if (major[k] >= 0) continue;
+                            const Surface& s = r.surfaces[k];
+                            std::uint64_t planar_pts = 0;
+                            for (auto [f, cnt] : votes[k])
+                                if (f >= 0) planar_pts += cnt;
+                            if (planar_pts < 3) continue;
+                            const Vec3d sight = s.home - cloud.scan_origins[0];
+                            const double inc =
+                                std::acos(std::abs(s.normal.dot(sight.normalized()))) * 180 / M_PI;
+                            std::printf(
+                                "      mixed surface %zu: %u members (%llu on faces), r %.0f "
+                                "mm, tol %.1f, ev %.2f %.2f %.2f, incidence %.0f deg, range "
+                                "%.2f\n",
+                                k, s.point_count, (unsigned long long)planar_pts, s.radius * 1000,
+                                s.tolerance * 1000, s.eigenvalues[0] * 1e6, s.eigenvalues[1] * 1e6,
+                                s.eigenvalues[2] * 1e6, inc, sight.norm());
+                        }
+                    }
+                    std::printf(
+                        "      >45 kinds: fit wrong for its own face %llu pts (%llu "
+                        "surfaces), point taken across an edge %llu, majority unknown "
+                        "%llu (on no face %llu)\n",
+                        (unsigned long long)wrong_fit, (unsigned long long)wrong_fit_pts,
+                        (unsigned long long)taken, (unsigned long long)unknown,
+                        (unsigned long long)unknown_mixed);
                 }
                 if (std::getenv("STUDY_FACES")) {
                     // Where the points more than 45 degrees off lie: by face, with the radius of

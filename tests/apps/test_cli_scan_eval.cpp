@@ -181,6 +181,12 @@ TEST_F(CliScan, OnTheTiltAxisWithPoseErrorsAndTheEvalShowsTheTail) {
     const auto surfaces = read_json(out / "surfaces.json");
     EXPECT_EQ(surfaces.at("parameters").at("plane_test"), "disk");
     EXPECT_FALSE(surfaces.at("summary").at("noise_sigma_by_range").at("sigma").empty());
+    // Two scans of one corridor: their layers' offsets measured, and larger than the noise within
+    // one layer (the range bias, half the datasheet's variance, is not averaged away by eq. (1)).
+    const auto& layers = surfaces.at("summary").at("layer_sigma_by_range").at("sigma");
+    ASSERT_FALSE(layers.empty());
+    EXPECT_GE(layers.at(0).get<double>(),
+              surfaces.at("summary").at("noise_sigma_by_range").at("sigma").at(0).get<double>());
     const CliRun e = surfgrow(cat({"eval ", q(out), " --truth ", q(scan),
                                    " --require 'normal_over_45<=0.5%,planes_normal_p95<=2'"}));
     ASSERT_EQ(e.code, 0) << e.out;

@@ -115,7 +115,7 @@ struct Held {
 Held held_to(const std::string& scene) {
     if (scene == "ibeam-channel") return {0.008, 0.75, kMinRegistered};
     if (scene == "pipes") return {0.0095, 0.6, kMinRegistered};
-    if (scene == "corridor") return {kMaxShareOver45, 0.8, 0.95};
+    if (scene == "corridor") return {kMaxShareOver45, 0.8, kMinRegistered};
     return {};
 }
 

@@ -81,6 +81,14 @@ constexpr double kMissRadiusPerMu = 2.0;
 constexpr std::size_t kFarLevels = 7;
 // A patch with at least this many patches around it, none of them in its plane, is dropped.
 constexpr int kLoneNeighbours = 3;
+// Fused clouds: a leftover that lies in another scan's layer of a surface, as far from it as this
+// many sigmas of the measured layer offsets, goes to that surface (attach_layer).
+constexpr double kLayerSigmas = 3.0;
+// ... if at least this many unregistered points of its own scan around it make that layer.
+constexpr int kLayerMinPoints = 4;
+// A scan's range bias moves its layer along the rays: by cos(incidence) of it along the normal,
+// counted as at least this much (grazing layers are few and thin on the ground).
+constexpr double kMinLayerCos = 0.25;
 // A neighbourhood that fails eq. (2) is given a larger ball only while its thickness is that of
 // the noise (at most this many sigmas): noise-limited far surfaces, not edges or steps.
 constexpr double kGrowSigmas = 1.5;
@@ -166,6 +174,12 @@ struct SensorSight {
     std::span<const std::uint32_t> scan_index;  // input order; empty: origins[0] for all
     std::span<const std::uint32_t> original;    // sorted index -> input index
 
+    /// Whether the points come from more than one scan (a fused cloud).
+    [[nodiscard]] bool fused() const { return !scan_index.empty() && origins.size() > 1; }
+    /// The scan of sorted point `i` (0 unless fused).
+    [[nodiscard]] std::uint32_t scan_of(std::uint32_t i) const {
+        return scan_index.empty() ? 0 : scan_index[original[i]];
+    }
     /// Direction from the sensor to sorted point `i` at local position `p`; zero when unknown.
     [[nodiscard]] Vec3d towards(std::uint32_t i, const Vec3f& p) const {
         if (origins.empty()) return Vec3d::Zero();
@@ -184,7 +198,8 @@ struct GrowContext {
     std::span<std::int32_t> labels;  // sorted order; during growing: the home's sorted index
     std::span<float> distance;       // sorted order: a registered point's distance to its plane
     const SensorSight& sight;
-    const NoiseProfile& noise;  // measured plane thickness by range (kDisk); may be unknown
+    const NoiseProfile& noise;   // measured plane thickness by range (kDisk); may be unknown
+    const NoiseProfile& layers;  // fused clouds: the scans' offsets from each other, by range
 };
 
 /// A home point's neighbourhood at the radius where the search stopped.
@@ -430,15 +445,66 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
     }
 }
 
+/// Fused clouds: how far each scan's layer of a neighbourhood lies from the layer of the scan with
+/// the most points there (the mean distances of their points from its plane; scans with at least
+/// 3 points), along that scan's rays, as a sample at that scan's range, appended to `out`. A fused
+/// cloud is a stack of layers: each scan sees a surface a little off (its range bias for that
+/// surface, its pose error), farther apart than the noise within one scan's layer; a surface
+/// grown mostly from one layer leaves the others' points beside it. A sample is |offset| / 0.6745,
+/// so that the profile's median is the offsets' sigma.
+void layer_offsets(const GrowContext& ctx, const Vec3f& h, const Neighbourhood& nb,
+                   std::vector<ThicknessSample>& out) {
+    struct Layer {
+        std::uint32_t scan;
+        std::uint32_t point;  // one of its points, for its range
+        double sum;
+        std::uint32_t count;
+    };
+    std::vector<Layer> layers;
+    const Vec3f n = nb.fit.normal.cast<float>();
+    const Vec3f c = h + nb.fit.centroid.cast<float>();
+    const auto r = static_cast<float>(nb.radius);
+    for_each_in_runs_within(ctx.index, nb.runs, h, r * r, [&](std::uint32_t j) {
+        const std::uint32_t scan = ctx.sight.scan_of(j);
+        const double d = n.dot(ctx.index.local_point(j) - c);
+        auto it = std::find_if(layers.begin(), layers.end(),
+                               [&](const Layer& l) { return l.scan == scan; });
+        if (it == layers.end()) {
+            layers.push_back({scan, j, d, 1});
+        } else {
+            it->sum += d;
+            ++it->count;
+        }
+    });
+    const auto kept =
+        std::count_if(layers.begin(), layers.end(), [](const Layer& l) { return l.count >= 3; });
+    if (kept < 2) return;
+    const Layer& main =
+        *std::max_element(layers.begin(), layers.end(), [](const Layer& a, const Layer& b) {
+            return a.count < b.count || (a.count == b.count && a.scan > b.scan);
+        });
+    const double main_offset = main.sum / main.count;
+    for (const Layer& l : layers) {
+        if (l.count < 3 || &l == &main) continue;
+        const Vec3d ray = ctx.sight.towards(l.point, ctx.index.local_point(l.point));
+        const double range = ray.norm();
+        const double along = std::max(std::abs(nb.fit.normal.dot(ray)) / range, kMinLayerCos);
+        out.push_back({range, std::abs(l.sum / l.count - main_offset) / along / 0.6745});
+    }
+}
+
 /// The noise profile of the cloud: the thickness of neighbourhoods around evenly spread sample
-/// points that pass the relative tests (no thickness limit yet), by range. Deterministic: the
-/// samples depend on the index alone.
-NoiseProfile measure_noise(const GrowContext& ctx, int threads) {
+/// points that pass the relative tests (no thickness limit yet), by range; and for a fused cloud
+/// the profile of its layers' offsets in the same neighbourhoods. Deterministic: the samples
+/// depend on the index alone.
+NoiseProfile measure_noise(const GrowContext& ctx, int threads, NoiseProfile& layer_profile) {
     const CubeIndex& index = ctx.index;
     const std::size_t n = index.size();
     const std::size_t count = std::min<std::size_t>(n, kNoiseSamples);
     std::vector<ThicknessSample> samples(count);
+    std::vector<std::vector<ThicknessSample>> offsets(count);
     std::vector<std::uint8_t> ok(count, 0);
+    const bool fused = ctx.sight.fused();
 #pragma omp parallel num_threads(threads)
     {
         std::vector<Range> runs27, wide;
@@ -453,12 +519,18 @@ NoiseProfile measure_noise(const GrowContext& ctx, int threads) {
             if (nb.verdict != PlaneVerdict::kPlane) continue;
             samples[k] = {nb.range, std::sqrt(nb.fit.eigenvalues[0])};
             ok[k] = 1;
+            if (fused) layer_offsets(ctx, h, nb, offsets[k]);
         }
     }
-    std::vector<ThicknessSample> kept;
-    for (std::size_t k = 0; k < count; ++k)
+    std::vector<ThicknessSample> kept, kept_offsets;
+    for (std::size_t k = 0; k < count; ++k) {
         if (ok[k]) kept.push_back(samples[k]);
-    return NoiseProfile(kept, kNoiseBandPerMu * ctx.config.mu, ctx.config.mu / kNoiseFloorPerMu);
+        kept_offsets.insert(kept_offsets.end(), offsets[k].begin(), offsets[k].end());
+    }
+    const double band = kNoiseBandPerMu * ctx.config.mu;
+    const double floor = ctx.config.mu / kNoiseFloorPerMu;
+    layer_profile = NoiseProfile(kept_offsets, band, floor);
+    return NoiseProfile(kept, band, floor);
 }
 
 /// Runs f(slab_id, thread_id) over the slabs of one colour (0: even, 1: odd) in parallel, the
@@ -482,6 +554,55 @@ void for_each_slab_of_colour(const CubeIndex& index, std::span<const Slab> slabs
     }
 }
 
+/// A surface near a leftover, and the leftover's signed distance to its plane.
+struct Candidate {
+    std::int32_t surface;
+    double distance;
+};
+
+/// Fused clouds: the surface whose plane, shifted to this point's scan's layer, the point fits
+/// best; -1 if none. A scan sees a surface a little off the others (its range bias, its pose
+/// error), so where growing found only the other scans' layer, this scan's points lie beside it,
+/// farther than the noise within a layer. `layer` holds the unregistered points of the point's own
+/// scan around it: it must be as thin as the noise, parallel to the surface (its distances to the
+/// plane agree), and offset from it by at most kLayerSigmas of the measured layer offsets; the
+/// point must lie within the surface's tolerance of the layer's median.
+std::int32_t attach_layer(const GrowContext& ctx, std::uint32_t i, const Vec3f& p,
+                          std::span<const Candidate> candidates,
+                          const std::vector<Surface>& surfaces, std::span<const double> tolerance,
+                          std::vector<Vec3f>& layer, std::vector<double>& dist) {
+    if (layer.size() < static_cast<std::size_t>(kLayerMinPoints)) return -1;
+    const CubeIndex& index = ctx.index;
+    const Vec3d ray = ctx.sight.towards(i, p);
+    const double range = ray.norm();
+    const double max_spread = ctx.config.thickness_sigmas * ctx.noise.sigma(range);
+    std::int32_t best = -1;
+    double best_fit = 0;
+    for (const Candidate& cand : candidates) {
+        const auto sid = static_cast<std::size_t>(cand.surface);
+        const Surface& surf = surfaces[sid];
+        const Vec3f n = surf.normal.cast<float>();
+        const Vec3f c = index.to_local(surf.centroid);
+        const double max_offset = kLayerSigmas * ctx.layers.sigma(range) *
+                                  std::max(std::abs(surf.normal.dot(ray)) / range, kMinLayerCos);
+        dist.clear();
+        for (const Vec3f& q : layer) dist.push_back(n.dot(q - c));
+        const auto mid = dist.begin() + static_cast<std::ptrdiff_t>(dist.size() / 2);
+        std::nth_element(dist.begin(), mid, dist.end());
+        const double m = *mid;
+        if (std::abs(m) > max_offset) continue;
+        double sq = 0;
+        for (const double d : dist) sq += (d - m) * (d - m);
+        if (sq > max_spread * max_spread * double(dist.size())) continue;
+        const double fit = std::abs(cand.distance - m);
+        if (fit <= tolerance[sid] && (best < 0 || fit < best_fit)) {
+            best = cand.surface;
+            best_fit = fit;
+        }
+    }
+    return best;
+}
+
 /// Leftover pass: for each unregistered point, the neighbouring surface whose plane it fits best.
 /// Reads only labels fixed by growing and writes to `attach`, so slabs can run in any order.
 /// Leftovers are a few per cent of the points: their cubes' runs are looked up one cube at a time.
@@ -503,6 +624,10 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
     }
     if (cfg.max_radius() <= cfg.mu) radii.clear();
     const double miss_limit = std::min(cfg.max_radius(), kMissRadiusPerMu * cfg.mu);
+    const bool layered = every_miss && ctx.sight.fused() && ctx.layers.known() && !radii.empty();
+    std::vector<Candidate> candidates;
+    std::vector<double> dist;
+    std::vector<Vec3f> layer;
     for (std::uint32_t c = slab.cube_begin; c < slab.cube_end; ++c) {
         s.runs.clear();
         for (auto& runs : s.far_runs) runs.clear();
@@ -514,14 +639,25 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
             std::int32_t best = -1;
             double best_dist = 0;
             bool any_neighbour = false;
+            // Fused clouds: the surfaces whose plane another layer of it may be off by (at normal
+            // incidence; attach_layer applies each one's), for the layer search below.
+            candidates.clear();
+            const double layer_reach =
+                layered ? kLayerSigmas * ctx.layers.sigma(ctx.sight.towards(i, p).norm()) : 0.0;
             auto consider = [&](std::int32_t sid) {
                 any_neighbour = true;
-                const Surface& surf = surfaces[static_cast<std::size_t>(sid)];
-                const double d = std::abs(surf.normal.dot(pw - surf.centroid));
-                if (d <= tolerance[static_cast<std::size_t>(sid)] && (best < 0 || d < best_dist)) {
+                const auto k = static_cast<std::size_t>(sid);
+                const Surface& surf = surfaces[k];
+                const double signed_d = surf.normal.dot(pw - surf.centroid);
+                const double d = std::abs(signed_d);
+                if (d <= tolerance[k] && (best < 0 || d < best_dist)) {
                     best = sid;
                     best_dist = d;
                 }
+                if (layered && tolerance[k] >= 0 && d <= tolerance[k] + layer_reach &&
+                    std::none_of(candidates.begin(), candidates.end(),
+                                 [&](const Candidate& q) { return q.surface == sid; }))
+                    candidates.push_back({sid, signed_d});
             };
             // Neighbours come in runs of one surface: considering a surface again changes nothing.
             std::int32_t last = -1;
@@ -551,6 +687,28 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
                                             static_cast<float>(radius * radius), visit);
                     if (radii[level] >= limit) break;
                 }
+            }
+            if (best < 0 && !candidates.empty()) {
+                // The point's own scan's unregistered points within mu, or 2 mu where sparse.
+                const std::uint32_t scan = ctx.sight.scan_of(i);
+                auto gather = [&](std::span<const Range> runs, double radius) {
+                    layer.clear();
+                    for_each_in_runs_within(index, runs, p, static_cast<float>(radius * radius),
+                                            [&](std::uint32_t j) {
+                                                if (labels[j] < 0 && ctx.sight.scan_of(j) == scan)
+                                                    layer.push_back(index.local_point(j));
+                                            });
+                };
+                gather(s.runs, cfg.mu);
+                if (layer.size() < static_cast<std::size_t>(kLayerMinPoints)) {
+                    if (s.far_runs[0].empty())
+                        index.column_ranges(
+                            index.cube_coords(c),
+                            static_cast<int>(std::ceil(radii[0] / index.cube_size())),
+                            s.far_runs[0]);
+                    gather(s.far_runs[0], radii[0]);
+                }
+                best = attach_layer(ctx, i, p, candidates, surfaces, tolerance, layer, dist);
             }
             if (best >= 0) attach.emplace_back(i, best);
         }
@@ -677,12 +835,14 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
     // About one surface per 30 points in scans at the paper's mu; a buffer that fills up doubles.
     // Kept under 2 MiB for small clouds, where a huge page would mostly stay empty.
     for (Scratch& sc : scratch) sc.grown.reserve(n / (32 * scratch.size()) + 64);
-    NoiseProfile noise;
-    const GrowContext sampling{index, cfg, labels, distance, sight, noise};
-    if (cfg.plane_test == PlaneTest::kDisk) noise = measure_noise(sampling, threads);
+    NoiseProfile noise, layers;
+    const GrowContext sampling{index, cfg, labels, distance, sight, noise, layers};
+    if (cfg.plane_test == PlaneTest::kDisk) noise = measure_noise(sampling, threads, layers);
     st.noise_band = noise.band();
     st.noise_sigma = noise.sigmas();
-    const GrowContext ctx{index, cfg, labels, distance, sight, noise};
+    st.layer_band = layers.band();
+    st.layer_sigma = layers.sigmas();
+    const GrowContext ctx{index, cfg, labels, distance, sight, noise, layers};
     std::atomic<std::size_t> done{0};
     for (int colour = 0; colour < 2; ++colour) {
         for_each_slab_of_colour(index, slabs, colour, threads, [&](std::size_t s, int t) {

@@ -103,6 +103,7 @@ nlohmann::json summary_json(const GrowStats& s) {
         {"lone_surfaces", s.lone_surfaces},
         {"adapted_surfaces", s.adapted_surfaces},
         {"noise_sigma_by_range", {{"band", s.noise_band}, {"sigma", s.noise_sigma}}},
+        {"layer_sigma_by_range", {{"band", s.layer_band}, {"sigma", s.layer_sigma}}},
         {"noise_points", s.noise_points},
         {"data_reduction", s.data_reduction()},
         {"orientation", orientation_name(s.orientation)},
