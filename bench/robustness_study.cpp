@@ -17,6 +17,7 @@
 #include "surfgrow/core/bound_planes.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/eval/evaluation.hpp"
+#include "surfgrow/eval/face_detection.hpp"
 #include "surfgrow/eval/plane_evaluation.hpp"
 #include "surfgrow/scanner/builtin_scenes.hpp"
 #include "surfgrow/scanner/fuse.hpp"
@@ -108,8 +109,9 @@ int main(int argc, char** argv) {
                 eval::EvalReport e = eval::evaluate(cloud, r, scene.faces());
                 BoundPlaneConfig pc;
                 pc.mu = config.mu;
+                const BoundPlanes planes = compute_bound_planes(cloud, r, pc);
                 eval::add_plane_figures(e, cloud, eval::GrowOutcome{r.surfaces, r.labels, &r.stats},
-                                        compute_bound_planes(cloud, r, pc), scene.faces());
+                                        planes, scene.faces());
                 std::printf(
                     "%-14s %4.0f %5d %8zu | %6.2f%% %6.2f%% | %6.2f %6.2f %5.2f%% %5.2f%% | %6.2f "
                     "%5.2f%% | %2llu/%-2llu | %6.3f\n",
@@ -133,6 +135,52 @@ int main(int argc, char** argv) {
                         static_cast<unsigned long long>(r.stats.adapted_surfaces),
                         static_cast<unsigned long long>(r.stats.surfaces),
                         static_cast<unsigned long long>(r.stats.lone_surfaces));
+                if (std::getenv("STUDY_MISSED")) {
+                    // Each planar face not correctly detected: the bound planes holding its
+                    // points, with their share of the face and of their own points on it.
+                    std::vector<std::uint8_t> planar(scene.faces().size(), 0);
+                    for (std::size_t f = 0; f < planar.size(); ++f)
+                        planar[f] = scene.faces()[f].planar() ? 1 : 0;
+                    const std::vector<std::int32_t> pl = plane_labels(planes, r.labels);
+                    const eval::FaceDetection d =
+                        eval::correct_detections(cloud.labels, pl, 0.8, 500, planar);
+                    std::map<std::int32_t, std::uint64_t> plane_size;
+                    for (const std::int32_t q : pl) ++plane_size[q];
+                    for (const std::int32_t f : d.missed) {
+                        std::map<std::int32_t, std::uint64_t> on;
+                        std::uint64_t total = 0;
+                        for (std::size_t i = 0; i < cloud.size(); ++i)
+                            if (cloud.labels[i] == f) ++on[pl[i]], ++total;
+                        std::printf(
+                            "      missed face %d (%s), %llu points:", f,
+                            scene.description()
+                                .primitives[std::size_t(scene.faces()[std::size_t(f)].primitive)]
+                                .name.c_str(),
+                            (unsigned long long)total);
+                        for (auto [q, c] : on)
+                            if (c * 20 >= total)
+                                std::printf(
+                                    " plane %d: %.0f%% of it, %.0f%% of its points", q,
+                                    100.0 * double(c) / double(total),
+                                    q < 0 ? 0.0 : 100.0 * double(c) / double(plane_size[q]));
+                        std::printf("\n");
+                        // The composition of the plane holding most of it.
+                        std::int32_t top = -1;
+                        std::uint64_t top_count = 0;
+                        for (auto [q, c] : on)
+                            if (q >= 0 && c > top_count) top = q, top_count = c;
+                        if (top < 0) continue;
+                        std::map<std::int32_t, std::uint64_t> comp;
+                        for (std::size_t i = 0; i < cloud.size(); ++i)
+                            if (pl[i] == top) ++comp[cloud.labels[i]];
+                        std::printf("        plane %d holds:", top);
+                        for (auto [t, c] : comp)
+                            if (c * 50 >= plane_size[top])
+                                std::printf(" face %d %.0f%%", t,
+                                            100.0 * double(c) / double(plane_size[top]));
+                        std::printf("\n");
+                    }
+                }
                 if (std::getenv("STUDY_NOISE")) {
                     std::printf("      noise sigma (band %.2f m):", r.stats.noise_band);
                     for (double v : r.stats.noise_sigma) std::printf(" %.1f", v * 1000);

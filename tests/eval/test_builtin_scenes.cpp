@@ -103,17 +103,18 @@ constexpr double kMinFacesDetected = 0.9;  // SegComp correct detection, T = 0.8
 // Where the defaults do not reach those bounds yet, the bound this scene is held to instead (the
 // gaps are in docs/algorithm.md, "What the disk test does not reach yet"): the I-beam channel's
 // 12-30 mm strips (stiffener ends, flange edges) and the splice plates' depth edges, narrower than
-// mu resolves; the pipes' fused scans, whose cylinders meet the wall and the floor in such strips;
-// the corridor's fused far band, where each scan's range bias puts the 10 mm fin a layer apart;
-// and the few faces of the pipes and the corridor, where one face split between two bound planes
-// costs 20-33 %.
+// mu resolves and fringed with mixed pixels; the pipes' fused scans, whose cylinders meet the wall
+// and the floor in such strips; the channel's single scans' 1.5-2 m band, which is mostly the top
+// flanges' 30 mm inner edges between two depth edges (a quarter of it unregistered); and the few
+// faces of the pipes and the corridor, where mixed pixels in a face's plane (15-25 % of its points)
+// or one face split between two bound planes costs 20-33 %.
 struct Held {
     double over_45 = kMaxShareOver45;
     double faces = kMinFacesDetected;
-    double fused_band = kMinRegistered;  // per range band, fused scans
+    double single_band = kMinRegistered;  // per range band, one scan
 };
 Held held_to(const std::string& scene) {
-    if (scene == "ibeam-channel") return {0.008, 0.75, kMinRegistered};
+    if (scene == "ibeam-channel") return {0.008, 0.75, 0.975};
     if (scene == "pipes") return {0.0095, 0.6, kMinRegistered};
     if (scene == "corridor") return {kMaxShareOver45, 0.8, kMinRegistered};
     return {};
@@ -126,10 +127,10 @@ void expect_bounds(const Grown& g, const std::string& scene, bool fused) {
     const EvalReport& r = g.report;
     const Held held = held_to(scene);
     EXPECT_GE(r.planar.fraction(), kMinRegistered);
-    // Every range band that holds at least 1 % of the planar points (and 1000).
-    const double band_bound = fused ? held.fused_band : kMinRegistered;
+    // Every range band that holds at least 1000 planar points.
+    const double band_bound = fused ? kMinRegistered : held.single_band;
     for (const BandReport& b : r.bands) {
-        if (b.planar.points < std::max<std::uint64_t>(1000, r.planar.points / 100)) continue;
+        if (b.planar.points < 1000) continue;
         EXPECT_GE(b.planar.fraction(), band_bound) << b.from_m << "-" << b.to_m << " m";
     }
     EXPECT_LE(r.normal_deg.p95, kMaxPatchP95);
