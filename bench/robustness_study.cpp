@@ -3,7 +3,14 @@
 // grown with the defaults (or the settings given); the registered share by range band and the
 // tails of the per-point normal error, for patches and through the bound planes.
 // Run: build/bench/robustness_study [--paper] [--scene NAME] [--spread S] [--incidence DEG]
-//      [--sigmas K] [--mu-max FACTOR] [--alpha A]
+//      [--sigmas K] [--mu-max FACTOR] [--alpha A] [--pool-radius MU] [--pool-angle DEG]
+//      [--thickness K] [--no-attach] [--pose-seed S]
+// Where the tail lies, by environment variable: STUDY_TIMES (stages and counters), STUDY_NOISE
+// (the noise and layer profiles), STUDY_BANDS (by range band and incidence), STUDY_KINDS (how the
+// points > 45 deg off went wrong; with STUDY_MIXED, the surfaces mostly of mixed pixels),
+// STUDY_MISSED (each face not detected, and the bound planes that hold it), STUDY_FACES (by face;
+// with STUDY_SURFACES the worst surfaces, STUDY_AT=x,y,z the points near a spot,
+// STUDY_UNREG_FACE=id a face's unregistered points, STUDY_DUMP=id a surface's ball).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
