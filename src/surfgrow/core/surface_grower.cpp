@@ -488,6 +488,7 @@ void layer_offsets(const GrowContext& ctx, const Vec3f& h, const Neighbourhood& 
         if (l.count < 3 || &l == &main) continue;
         const Vec3d ray = ctx.sight.towards(l.point, ctx.index.local_point(l.point));
         const double range = ray.norm();
+        if (!(range > 0)) continue;  // a point on its sensor has no ray
         const double along = std::max(std::abs(nb.fit.normal.dot(ray)) / range, kMinLayerCos);
         out.push_back({range, std::abs(l.sum / l.count - main_offset) / along / 0.6745});
     }
@@ -575,6 +576,7 @@ std::int32_t attach_layer(const GrowContext& ctx, std::uint32_t i, const Vec3f& 
     const CubeIndex& index = ctx.index;
     const Vec3d ray = ctx.sight.towards(i, p);
     const double range = ray.norm();
+    if (!(range > 0)) return -1;
     const double max_spread = ctx.config.thickness_sigmas * ctx.noise.sigma(range);
     std::int32_t best = -1;
     double best_fit = 0;
