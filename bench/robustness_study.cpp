@@ -4,7 +4,7 @@
 // tails of the per-point normal error, for patches and through the bound planes.
 // Run: build/bench/robustness_study [--paper] [--scene NAME] [--spread S] [--incidence DEG]
 //      [--sigmas K] [--mu-max FACTOR] [--alpha A] [--pool-radius MU] [--pool-angle DEG]
-//      [--thickness K] [--no-attach] [--pose-seed S]
+//      [--thickness K] [--no-attach] [--pose-seed S] [--min-new N]
 // Where the tail lies, by environment variable: STUDY_TIMES (stages and counters), STUDY_NOISE
 // (the noise and layer profiles), STUDY_BANDS (by range band and incidence), STUDY_KINDS (how the
 // points > 45 deg off went wrong; with STUDY_MIXED, the surfaces mostly of mixed pixels),
@@ -95,6 +95,9 @@ int main(int argc, char** argv) {
             ++a;
         } else if (arg == "--alpha") {
             config.alpha = std::atof(next);
+            ++a;
+        } else if (arg == "--min-new") {
+            config.min_new_points = std::atoi(next);
             ++a;
         } else {
             std::fprintf(stderr, "unknown argument %s\n", arg.c_str());
