@@ -59,8 +59,9 @@ struct GrowStats {
     /// sensor, or one value for all ranges (noise_band 0); empty with the paper's plane test.
     std::vector<double> noise_sigma;
     double noise_band = 0.0;
-    /// Fused clouds: the RMS offset of the scans' layers of one surface from each other's plane,
-    /// by range band of width layer_band (or one value, layer_band 0); empty for one scan.
+    /// Fused clouds: the sigma of how far a scan's layer of a surface lies from the densest
+    /// scan's there, along its rays, by range band of width layer_band (or one value,
+    /// layer_band 0); empty for one scan.
     std::vector<double> layer_sigma;
     double layer_band = 0.0;
     StageTimes seconds;

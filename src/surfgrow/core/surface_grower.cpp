@@ -89,6 +89,8 @@ constexpr int kLayerMinPoints = 4;
 // A scan's range bias moves its layer along the rays: by cos(incidence) of it along the normal,
 // counted as at least this much (grazing layers are few and thin on the ground).
 constexpr double kMinLayerCos = 0.25;
+// The median of |x| for a zero-mean Gaussian x is this many sigmas.
+constexpr double kMedianAbsPerSigma = 0.6745;
 // A neighbourhood that fails eq. (2) is given a larger ball only while its thickness is that of
 // the noise (at most this many sigmas): noise-limited far surfaces, not edges or steps.
 constexpr double kGrowSigmas = 1.5;
@@ -450,8 +452,8 @@ void grow_slab(const GrowContext& ctx, const Slab& slab, std::size_t slab_id, Sc
 /// 3 points), along that scan's rays, as a sample at that scan's range, appended to `out`. A fused
 /// cloud is a stack of layers: each scan sees a surface a little off (its range bias for that
 /// surface, its pose error), farther apart than the noise within one scan's layer; a surface
-/// grown mostly from one layer leaves the others' points beside it. A sample is |offset| / 0.6745,
-/// so that the profile's median is the offsets' sigma.
+/// grown mostly from one layer leaves the others' points beside it. A sample is |offset| divided
+/// by kMedianAbsPerSigma, so that the profile's median is the offsets' sigma.
 void layer_offsets(const GrowContext& ctx, const Vec3f& h, const Neighbourhood& nb,
                    std::vector<ThicknessSample>& out) {
     struct Layer {
@@ -490,7 +492,8 @@ void layer_offsets(const GrowContext& ctx, const Vec3f& h, const Neighbourhood& 
         const double range = ray.norm();
         if (!(range > 0)) continue;  // a point on its sensor has no ray
         const double along = std::max(std::abs(nb.fit.normal.dot(ray)) / range, kMinLayerCos);
-        out.push_back({range, std::abs(l.sum / l.count - main_offset) / along / 0.6745});
+        out.push_back(
+            {range, std::abs(l.sum / l.count - main_offset) / along / kMedianAbsPerSigma});
     }
 }
 
@@ -562,21 +565,21 @@ struct Candidate {
 };
 
 /// Fused clouds: the surface whose plane, shifted to this point's scan's layer, the point fits
-/// best; -1 if none. A scan sees a surface a little off the others (its range bias, its pose
-/// error), so where growing found only the other scans' layer, this scan's points lie beside it,
-/// farther than the noise within a layer. `layer` holds the unregistered points of the point's own
-/// scan around it: it must be as thin as the noise, parallel to the surface (its distances to the
-/// plane agree), and offset from it by at most kLayerSigmas of the measured layer offsets; the
-/// point must lie within the surface's tolerance of the layer's median.
-std::int32_t attach_layer(const GrowContext& ctx, std::uint32_t i, const Vec3f& p,
+/// best; -1 if none; `ray` runs from its sensor to the point. A scan sees a surface a little off
+/// the others (its range bias, its pose error), so where growing found only the other scans' layer,
+/// this scan's points lie beside it, farther than the noise within a layer. `layer` holds the
+/// unregistered points of the point's own scan around it: it must be as thin as the noise, parallel
+/// to the surface (its distances to the plane agree), and offset from it by at most kLayerSigmas of
+/// the measured layer offsets; the point must lie within the surface's tolerance of the layer's
+/// median.
+std::int32_t attach_layer(const GrowContext& ctx, const Vec3d& ray,
                           std::span<const Candidate> candidates,
                           const std::vector<Surface>& surfaces, std::span<const double> tolerance,
                           std::vector<Vec3f>& layer, std::vector<double>& dist) {
     if (layer.size() < static_cast<std::size_t>(kLayerMinPoints)) return -1;
     const CubeIndex& index = ctx.index;
-    const Vec3d ray = ctx.sight.towards(i, p);
     const double range = ray.norm();
-    if (!(range > 0)) return -1;
+    if (!(range > 0)) return -1;  // a point on its sensor has no ray
     const double max_spread = ctx.config.thickness_sigmas * ctx.noise.sigma(range);
     std::int32_t best = -1;
     double best_fit = 0;
@@ -633,6 +636,14 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
     for (std::uint32_t c = slab.cube_begin; c < slab.cube_end; ++c) {
         s.runs.clear();
         for (auto& runs : s.far_runs) runs.clear();
+        // The runs of search level `level` around cube c, looked up on first use.
+        auto far_runs = [&](std::size_t level) -> std::span<const Range> {
+            if (s.far_runs[level].empty())
+                index.column_ranges(index.cube_coords(c),
+                                    static_cast<int>(std::ceil(radii[level] / index.cube_size())),
+                                    s.far_runs[level]);
+            return s.far_runs[level];
+        };
         for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
             if (labels[i] >= 0) continue;
             if (s.runs.empty()) index.column_ranges(index.cube_coords(c), 1, s.runs);
@@ -644,8 +655,8 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
             // Fused clouds: the surfaces whose plane another layer of it may be off by (at normal
             // incidence; attach_layer applies each one's), for the layer search below.
             candidates.clear();
-            const double layer_reach =
-                layered ? kLayerSigmas * ctx.layers.sigma(ctx.sight.towards(i, p).norm()) : 0.0;
+            const Vec3d ray = layered ? ctx.sight.towards(i, p) : Vec3d::Zero();
+            const double layer_reach = layered ? kLayerSigmas * ctx.layers.sigma(ray.norm()) : 0.0;
             auto consider = [&](std::int32_t sid) {
                 any_neighbour = true;
                 const auto k = static_cast<std::size_t>(sid);
@@ -679,13 +690,8 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
                 const double limit = sparse || !every_miss ? cfg.max_radius() : miss_limit;
                 for (std::size_t level = 0; level < radii.size() && best < 0; ++level) {
                     const double radius = std::min(radii[level], limit);
-                    if (s.far_runs[level].empty())
-                        index.column_ranges(
-                            index.cube_coords(c),
-                            static_cast<int>(std::ceil(radii[level] / index.cube_size())),
-                            s.far_runs[level]);
                     last = -1;
-                    for_each_in_runs_within(index, s.far_runs[level], p,
+                    for_each_in_runs_within(index, far_runs(level), p,
                                             static_cast<float>(radius * radius), visit);
                     if (radii[level] >= limit) break;
                 }
@@ -702,15 +708,9 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
                                             });
                 };
                 gather(s.runs, cfg.mu);
-                if (layer.size() < static_cast<std::size_t>(kLayerMinPoints)) {
-                    if (s.far_runs[0].empty())
-                        index.column_ranges(
-                            index.cube_coords(c),
-                            static_cast<int>(std::ceil(radii[0] / index.cube_size())),
-                            s.far_runs[0]);
-                    gather(s.far_runs[0], radii[0]);
-                }
-                best = attach_layer(ctx, i, p, candidates, surfaces, tolerance, layer, dist);
+                if (layer.size() < static_cast<std::size_t>(kLayerMinPoints))
+                    gather(far_runs(0), radii[0]);
+                best = attach_layer(ctx, ray, candidates, surfaces, tolerance, layer, dist);
             }
             if (best >= 0) attach.emplace_back(i, best);
         }
