@@ -1,8 +1,14 @@
 # One place for the compile options every surfgrow target shares.
 
+include(GNUInstallDirs)
+
 set(SURFGROW_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align
     -Wunused -Woverloaded-virtual -Wnull-dereference -Wdouble-promotion -Wformat=2
     -Wimplicit-fallthrough)
+
+# Floating point as written: no fused multiply-adds the compiler picks per target, so a build for
+# any CPU gives the same bytes (docs/performance.md, "Portable binaries").
+add_compile_options(-ffp-contract=off)
 
 # Global, not per target: headers with SIMD code must see the same flags in every unit.
 if(SURFGROW_NATIVE)
@@ -21,4 +27,19 @@ function(surfgrow_target_options target)
     if(SURFGROW_WERROR)
         target_compile_options(${target} PRIVATE -Werror)
     endif()
+endfunction()
+
+# Declare one of surfgrow's libraries: the alias surfgrow::<part> (what users link), includes that
+# work from the build tree and from an installed one, and a place in the installed package.
+set_property(GLOBAL PROPERTY SURFGROW_LIBRARIES "")
+function(surfgrow_library target part)
+    add_library(surfgrow::${part} ALIAS ${target})
+    set_target_properties(${target} PROPERTIES EXPORT_NAME ${part} OUTPUT_NAME ${target})
+    target_include_directories(${target} PUBLIC
+        $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/src>
+        $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/include>
+        $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+    target_compile_features(${target} PUBLIC cxx_std_20)
+    surfgrow_target_options(${target})
+    set_property(GLOBAL APPEND PROPERTY SURFGROW_LIBRARIES ${target})
 endfunction()

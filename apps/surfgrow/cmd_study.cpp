@@ -20,6 +20,7 @@
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/scanner/fuse.hpp"
+#include "surfgrow/version.hpp"
 
 namespace surfgrow::cli {
 

@@ -18,6 +18,7 @@
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/eval/evaluation.hpp"
 #include "surfgrow/io/cloud_io.hpp"
+#include "surfgrow/version.hpp"
 
 namespace surfgrow::cli {
 

@@ -15,6 +15,7 @@
 #include "surfgrow/render/png.hpp"
 #include "surfgrow/render/renderer.hpp"
 #include "surfgrow/render/scene_builder.hpp"
+#include "surfgrow/version.hpp"
 
 namespace surfgrow::cli {
 

@@ -12,6 +12,7 @@
 
 #include "commands.hpp"
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/version.hpp"
 
 namespace {
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "surfgrow/core/bulk_allocator.hpp"
+#include "surfgrow/core/detail/simd_kernels.hpp"
 #include "surfgrow/core/geometry.hpp"
 
 namespace surfgrow {
@@ -26,11 +27,8 @@ namespace surfgrow {
 /// cube apart: a radius query never misses a point.
 class CubeIndex {
   public:
-    /// A run [begin, end) of sorted point positions.
-    struct Range {
-        std::uint32_t begin = 0;
-        std::uint32_t end = 0;
-    };
+    /// A run [begin, end) of sorted point positions (the kernels' own type: they read them).
+    using Range = detail::IndexRun;
     /// Readable floats past size() in each coordinate array, so SIMD loops may overrun a range.
     static constexpr std::size_t kPadding = 64;
 

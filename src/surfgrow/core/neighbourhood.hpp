@@ -1,105 +1,66 @@
-// The two inner loops of surface growing, over runs of the cube index, in SIMD.
+// The inner loops of surface growing over runs of the cube index: thin wrappers over the SIMD
+// kernels of detail/simd_kernels.hpp, chosen at run time on the CPU found.
 #pragma once
 
-#include <bit>
+#include <algorithm>
 #include <cstdint>
-#include <experimental/simd>
 #include <span>
 #include <vector>
 
 #include "surfgrow/core/cube_index.hpp"
+#include "surfgrow/core/detail/simd_kernels.hpp"
 #include "surfgrow/core/plane_fit.hpp"
 
 namespace surfgrow {
 
-namespace simd = std::experimental;
-using FloatV = simd::native_simd<float>;
-static_assert(FloatV::size() <= CubeIndex::kPadding,
+static_assert(detail::kKernelLanes <= CubeIndex::kPadding,
               "cube index padding must cover one SIMD vector");
+
+namespace detail {
+
+inline PointArrays arrays_of(const CubeIndex& index) {
+    return {index.xs(), index.ys(), index.zs()};
+}
+
+/// Calls visit(begin, end) over `runs` in pieces of at most kKernelChunk points, each piece
+/// starting a whole number of vectors after its run's begin.
+template <class F>
+void for_each_chunk(std::span<const CubeIndex::Range> runs, F&& visit) {
+    for (const CubeIndex::Range& run : runs)
+        for (std::uint32_t b = run.begin; b < run.end; b += kKernelChunk)
+            visit(b, std::min(run.end, b + kKernelChunk));
+}
+
+/// The loop of for_each_in_runs_within(); with `labels`, only points whose label is not `skip`.
+template <class F>
+void runs_within(const CubeIndex& index, std::span<const CubeIndex::Range> runs, const Vec3f& p,
+                 float r2, const std::int32_t* labels, std::int32_t skip, F&& f) {
+    const KernelTable& k = kernels();
+    const PointArrays pts = arrays_of(index);
+    const float q[3] = {p.x(), p.y(), p.z()};
+    std::uint32_t found[kKernelChunk];
+    for_each_chunk(runs, [&](std::uint32_t b, std::uint32_t e) {
+        const std::uint32_t n = k.within(pts, b, e, q, r2, labels, skip, found);
+        for (std::uint32_t i = 0; i < n; ++i) f(found[i]);
+    });
+}
+
+}  // namespace detail
 
 /// Moments (relative to `home`, local coordinates) of the points of `runs` within `radius` of home.
 /// Whole vectors are loaded and the lanes past a run's end masked off (the index is padded).
 [[nodiscard]] inline Moments gather_moments(const CubeIndex& index,
                                             std::span<const CubeIndex::Range> runs,
                                             const Vec3f& home, float radius) {
-    constexpr int W = static_cast<int>(FloatV::size());
-    const FloatV lane([](int l) { return static_cast<float>(l); });
-    const FloatV hx = home.x(), hy = home.y(), hz = home.z(), r2 = radius * radius;
-    FloatV n = 0, sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
-    const float* X = index.xs();
-    const float* Y = index.ys();
-    const float* Z = index.zs();
-    for (const CubeIndex::Range& run : runs) {
-        for (std::uint32_t i = run.begin; i < run.end; i += W) {
-            const FloatV dx = FloatV(X + i, simd::element_aligned) - hx;
-            const FloatV dy = FloatV(Y + i, simd::element_aligned) - hy;
-            const FloatV dz = FloatV(Z + i, simd::element_aligned) - hz;
-            const auto m =
-                (dx * dx + dy * dy + dz * dz <= r2) && (lane < static_cast<float>(run.end - i));
-            simd::where(m, n) += 1.f;
-            simd::where(m, sx) += dx;
-            simd::where(m, sy) += dy;
-            simd::where(m, sz) += dz;
-            simd::where(m, sxx) += dx * dx;
-            simd::where(m, sxy) += dx * dy;
-            simd::where(m, sxz) += dx * dz;
-            simd::where(m, syy) += dy * dy;
-            simd::where(m, syz) += dy * dz;
-            simd::where(m, szz) += dz * dz;
-        }
-    }
+    const float h[3] = {home.x(), home.y(), home.z()};
+    const detail::RawMoments s = detail::kernels().moments(detail::arrays_of(index), runs.data(),
+                                                           runs.size(), h, radius * radius);
     Moments mo;
-    auto sum = [](const FloatV& v) { return static_cast<double>(simd::reduce(v)); };
-    mo.n = sum(n);
-    mo.sum = {sum(sx), sum(sy), sum(sz)};
-    mo.sum_sq << sum(sxx), sum(sxy), sum(sxz), sum(sxy), sum(syy), sum(syz), sum(sxz), sum(syz),
-        sum(szz);
+    mo.n = s.v[0];
+    mo.sum = {s.v[1], s.v[2], s.v[3]};
+    mo.sum_sq << s.v[4], s.v[5], s.v[6], s.v[5], s.v[7], s.v[8], s.v[6], s.v[8], s.v[9];
     return mo;
 }
-
-/// The lanes of a SIMD mask as bits, lane l in bit l.
-template <class Mask>
-[[nodiscard]] inline std::uint32_t lane_bits(const Mask& m) {
-    static_assert(Mask::size() <= 32);
-    std::uint32_t bits = 0;
-    for (int l = 0; l < static_cast<int>(Mask::size()); ++l)
-        bits |= static_cast<std::uint32_t>(m[l]) << l;
-    return bits;
-}
-
-namespace detail {
-
-/// The loop of for_each_in_runs_within(); with `labels`, only points whose label is not `skip`.
-template <class F>
-void runs_within(const CubeIndex& index, std::span<const CubeIndex::Range> runs, const Vec3f& p,
-                 float r2, const std::int32_t* labels, std::int32_t skip, F&& f) {
-    using IntV = simd::rebind_simd_t<std::int32_t, FloatV>;
-    constexpr int W = static_cast<int>(FloatV::size());
-    const FloatV lane([](int l) { return static_cast<float>(l); });
-    const FloatV px = p.x(), py = p.y(), pz = p.z(), rr = r2;
-    const IntV skipv = skip;
-    const float* X = index.xs();
-    const float* Y = index.ys();
-    const float* Z = index.zs();
-    for (const CubeIndex::Range& run : runs) {
-        for (std::uint32_t i = run.begin; i < run.end; i += W) {
-            const FloatV dx = FloatV(X + i, simd::element_aligned) - px;
-            const FloatV dy = FloatV(Y + i, simd::element_aligned) - py;
-            const FloatV dz = FloatV(Z + i, simd::element_aligned) - pz;
-            const auto m =
-                (dx * dx + dy * dy + dz * dz <= rr) && (lane < static_cast<float>(run.end - i));
-            if (simd::none_of(m)) continue;
-            std::uint32_t bits = lane_bits(m);
-            if (labels) bits &= lane_bits(IntV(labels + i, simd::element_aligned) != skipv);
-            while (bits) {
-                f(i + static_cast<std::uint32_t>(std::countr_zero(bits)));
-                bits &= bits - 1;
-            }
-        }
-    }
-}
-
-}  // namespace detail
 
 /// Calls f(j) for every point j of `runs` whose squared distance to `p` (local coordinates) is at
 /// most `r2`, in index order: the distance tests in SIMD, the calls for the points that pass.
@@ -126,33 +87,18 @@ template <class F>
 void for_each_on_plane(const CubeIndex& index, std::span<const CubeIndex::Range> runs,
                        const Vec3f& home, float radius, const Vec3f& normal, const Vec3f& centroid,
                        float tolerance, F&& f) {
-    constexpr int W = static_cast<int>(FloatV::size());
-    const FloatV lane([](int l) { return static_cast<float>(l); });
-    const FloatV hx = home.x(), hy = home.y(), hz = home.z(), r2 = radius * radius;
-    const FloatV nx = normal.x(), ny = normal.y(), nz = normal.z();
-    const FloatV off = normal.dot(centroid), tol = tolerance;
-    const float* X = index.xs();
-    const float* Y = index.ys();
-    const float* Z = index.zs();
-    alignas(64) float d[FloatV::size()];
-    for (const CubeIndex::Range& run : runs) {
-        for (std::uint32_t i = run.begin; i < run.end; i += W) {
-            const FloatV dx = FloatV(X + i, simd::element_aligned) - hx;
-            const FloatV dy = FloatV(Y + i, simd::element_aligned) - hy;
-            const FloatV dz = FloatV(Z + i, simd::element_aligned) - hz;
-            const FloatV dist = simd::abs(dx * nx + dy * ny + dz * nz - off);
-            const auto m = (dx * dx + dy * dy + dz * dz <= r2) && (dist <= tol) &&
-                           (lane < static_cast<float>(run.end - i));
-            if (simd::none_of(m)) continue;
-            dist.copy_to(d, simd::element_aligned);
-            std::uint32_t bits = lane_bits(m);
-            while (bits) {
-                const int l = std::countr_zero(bits);
-                bits &= bits - 1;
-                f(i + static_cast<std::uint32_t>(l), d[l]);
-            }
-        }
-    }
+    const detail::KernelTable& k = detail::kernels();
+    const detail::PointArrays pts = detail::arrays_of(index);
+    const float h[3] = {home.x(), home.y(), home.z()};
+    const float n[3] = {normal.x(), normal.y(), normal.z()};
+    const float offset = normal.dot(centroid);
+    std::uint32_t found[detail::kKernelChunk];
+    float distance[detail::kKernelChunk];
+    detail::for_each_chunk(runs, [&](std::uint32_t b, std::uint32_t e) {
+        const std::uint32_t count =
+            k.on_plane(pts, b, e, h, radius * radius, n, offset, tolerance, found, distance);
+        for (std::uint32_t i = 0; i < count; ++i) f(found[i], distance[i]);
+    });
 }
 
 /// Sets labels[i] = label for every still unregistered point (labels[i] < 0) of `runs` within
@@ -190,48 +136,17 @@ struct FrameSums {
                                                  const Vec3f& home, float radius, const Vec3f& c,
                                                  const Vec3f& u, const Vec3f& v, const Vec3f& n,
                                                  float tolerance) {
-    constexpr int W = static_cast<int>(FloatV::size());
-    const FloatV lane([](int l) { return static_cast<float>(l); });
-    const FloatV hx = home.x(), hy = home.y(), hz = home.z(), r2 = radius * radius;
-    const FloatV cx = c.x(), cy = c.y(), cz = c.z(), tol = tolerance;
-    FloatV all[10], sgn[2][9];
-    for (FloatV& x : all) x = 0;
-    for (auto& row : sgn)
-        for (FloatV& x : row) x = 0;
-    const float* X = index.xs();
-    const float* Y = index.ys();
-    const float* Z = index.zs();
-    for (const CubeIndex::Range& run : runs) {
-        for (std::uint32_t i = run.begin; i < run.end; i += W) {
-            const FloatV px = FloatV(X + i, simd::element_aligned) - hx;
-            const FloatV py = FloatV(Y + i, simd::element_aligned) - hy;
-            const FloatV pz = FloatV(Z + i, simd::element_aligned) - hz;
-            const FloatV dx = px - cx, dy = py - cy, dz = pz - cz;
-            const FloatV r = dx * n.x() + dy * n.y() + dz * n.z();
-            const auto in = (px * px + py * py + pz * pz <= r2) && (simd::abs(r) <= tol) &&
-                            (lane < static_cast<float>(run.end - i));
-            if (simd::none_of(in)) continue;
-            FloatV w = 0;
-            simd::where(in, w) = 1.f;
-            const FloatV qu = dx * u.x() + dy * u.y() + dz * u.z();
-            const FloatV qv = dx * v.x() + dy * v.y() + dz * v.z();
-            const FloatV t[10] = {w,           w * qu,     w * qv,      w * r,      w * qu * qu,
-                                  w * qu * qv, w * qu * r, w * qv * qv, w * qv * r, w * r * r};
-            FloatV su = 1, sv = 1;
-            simd::where(qu < FloatV(0.f), su) = -1.f;
-            simd::where(qv < FloatV(0.f), sv) = -1.f;
-            for (int k = 0; k < 10; ++k) all[k] += t[k];
-            for (int k = 0; k < 9; ++k) {
-                sgn[0][k] += su * t[k];
-                sgn[1][k] += sv * t[k];
-            }
-        }
-    }
+    const float h[3] = {home.x(), home.y(), home.z()};
+    const float cc[3] = {c.x(), c.y(), c.z()}, uu[3] = {u.x(), u.y(), u.z()};
+    const float vv[3] = {v.x(), v.y(), v.z()}, nn[3] = {n.x(), n.y(), n.z()};
+    const detail::RawFrameSums s =
+        detail::kernels().frame_sums(detail::arrays_of(index), runs.data(), runs.size(), h,
+                                     radius * radius, cc, uu, vv, nn, tolerance);
     FrameSums out;
-    for (int k = 0; k < 10; ++k) out.all[k] = static_cast<double>(simd::reduce(all[k]));
+    std::copy(std::begin(s.all), std::end(s.all), std::begin(out.all));
     for (int a = 0; a < 2; ++a)
-        for (int k = 0; k < 9; ++k)
-            out.signed_by[a][k] = static_cast<double>(simd::reduce(sgn[a][k]));
+        std::copy(std::begin(s.signed_by[a]), std::end(s.signed_by[a]),
+                  std::begin(out.signed_by[a]));
     return out;
 }
 

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# surfgrow as a library, checked as a user meets it (CI runs this after the tests):
+#  1. `cmake --install` of a Release build into a fresh prefix;
+#  2. examples/cpp built against that prefix with find_package(surfgrow), and run;
+#  3. a parent project that takes surfgrow in with add_subdirectory, built and run;
+#  4. the installed CLI under qemu-user emulating a Westmere CPU (SSE4.2, no AVX): the default
+#     build runs on any x86-64, with the SIMD paths chosen at run time.
+# Usage: scripts/check-package.sh [build dir, default build]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+src=$PWD
+build=${1:-build}
+scripts/install-deps.sh build package
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+echo "check-package: install" >&2
+cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
+test -f "$tmp/prefix/lib/cmake/surfgrow/surfgrowConfig.cmake"
+test -f "$tmp/prefix/include/surfgrow/core/surface_grower.hpp"
+test -f "$tmp/prefix/lib/pkgconfig/surfgrow.pc"
+
+echo "check-package: find_package(surfgrow) consumer (examples/cpp)" >&2
+cmake -S examples/cpp -B "$tmp/examples" -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_PREFIX_PATH="$tmp/prefix" >/dev/null
+cmake --build "$tmp/examples" -j "$(nproc)" >/dev/null
+ctest --test-dir "$tmp/examples" --output-on-failure
+
+echo "check-package: add_subdirectory consumer" >&2
+cmake -S tests/package/add_subdirectory -B "$tmp/subdir" -DCMAKE_BUILD_TYPE=Release \
+      -DSURFGROW_SOURCE_DIR="$src" >/dev/null
+cmake --build "$tmp/subdir" -j "$(nproc)" --target grow_cloud >/dev/null
+"$tmp/subdir/grow_cloud"
+if ls "$tmp/subdir/surfgrow" | grep -q -e '^tests$' -e '^bench$'; then
+    echo "check-package: add_subdirectory configured surfgrow's tests or benchmarks" >&2
+    exit 1
+fi
+
+if [[ $(uname -m) == x86_64 ]]; then
+    echo "check-package: the installed CLI on an emulated Westmere (no AVX)" >&2
+    cli="$tmp/prefix/bin/surfgrow"
+    qemu-x86_64 -cpu Westmere "$cli" --version
+    "$cli" scan --scene room-corner --poses 1 -q -o "$tmp/scan"
+    "$cli" grow "$tmp/scan/cloud.ply" -o "$tmp/native" -q --no-picture --no-octomap
+    qemu-x86_64 -cpu Westmere "$cli" grow "$tmp/scan/cloud.ply" -o "$tmp/westmere" -q \
+        --no-picture --no-octomap
+    # The baseline and the widest SIMD path give the same bytes.
+    for f in surfaces.json labels.txt planes.json coverage.json; do
+        cmp "$tmp/native/$f" "$tmp/westmere/$f"
+    done
+fi
+echo "check-package: ok" >&2
