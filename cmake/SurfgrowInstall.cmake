@@ -31,12 +31,13 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/surfgrowConfigVersion.cma
 install(FILES ${PROJECT_BINARY_DIR}/surfgrowConfig.cmake
               ${PROJECT_BINARY_DIR}/surfgrowConfigVersion.cmake DESTINATION ${config_dir})
 
-# pkg-config: static libraries, so every library and what they link, in link order.
+# pkg-config: static libraries, so every library and what they link, in link order (each library
+# is declared after those it uses, so the reverse of that order).
+set(link_order ${libraries})
+list(REVERSE link_order)
 set(SURFGROW_PC_LIBS "")
-foreach(lib surfgrow_view surfgrow_render surfgrow_eval surfgrow_io surfgrow_scanner surfgrow_core)
-    if(lib IN_LIST libraries)
-        string(APPEND SURFGROW_PC_LIBS " -l${lib}")
-    endif()
+foreach(lib IN LISTS link_order)
+    string(APPEND SURFGROW_PC_LIBS " -l${lib}")
 endforeach()
 if(SURFGROW_BUILD_RENDER)
     string(APPEND SURFGROW_PC_LIBS " -lpng -lfreetype -lfontconfig")

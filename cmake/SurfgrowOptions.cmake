@@ -34,7 +34,7 @@ endfunction()
 set_property(GLOBAL PROPERTY SURFGROW_LIBRARIES "")
 function(surfgrow_library target part)
     add_library(surfgrow::${part} ALIAS ${target})
-    set_target_properties(${target} PROPERTIES EXPORT_NAME ${part} OUTPUT_NAME ${target})
+    set_target_properties(${target} PROPERTIES EXPORT_NAME ${part})
     target_include_directories(${target} PUBLIC
         $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/src>
         $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/include>

@@ -108,10 +108,10 @@ TEST(SimdKernels, EveryPathGivesTheBaselineBytes) {
         const detail::RawMoments m0 = base.moments(a.view(), kRuns.data(), kRuns.size(), kHome, r2);
         const detail::RawMoments m1 = t->moments(a.view(), kRuns.data(), kRuns.size(), kHome, r2);
         EXPECT_EQ(std::memcmp(&m0, &m1, sizeof m0), 0);
-        const detail::RawFrameSums f0 = base.frame_sums(a.view(), kRuns.data(), kRuns.size(), kHome,
-                                                        r2, c, u, v, kNormal, 0.004f);
-        const detail::RawFrameSums f1 = t->frame_sums(a.view(), kRuns.data(), kRuns.size(), kHome,
-                                                      r2, c, u, v, kNormal, 0.004f);
+        const detail::FrameSums f0 = base.frame_sums(a.view(), kRuns.data(), kRuns.size(), kHome,
+                                                     r2, c, u, v, kNormal, 0.004f);
+        const detail::FrameSums f1 = t->frame_sums(a.view(), kRuns.data(), kRuns.size(), kHome, r2,
+                                                   c, u, v, kNormal, 0.004f);
         EXPECT_EQ(std::memcmp(&f0, &f1, sizeof f0), 0);
         EXPECT_EQ(within_all(base, a, kHome, r2, a.labels.data()),
                   within_all(*t, a, kHome, r2, a.labels.data()));

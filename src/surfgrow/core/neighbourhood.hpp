@@ -118,15 +118,7 @@ inline std::uint32_t register_points(const CubeIndex& index, std::span<const Cub
     return registered;
 }
 
-/// A neighbourhood's inliers in a plane's own frame: q = (u, v, r), the coordinates along two
-/// in-plane axes and the normal relative to a point c of the plane. `all` holds, over the inliers,
-/// the sums of 1, u, v, r, uu, uv, ur, vv, vr, rr; `signed_by[a]` the same sums (but rr) with
-/// each point weighted by the sign of its coordinate along axis a (u or v): the two halves of the
-/// neighbourhood across that axis are (all + signed) / 2 and (all - signed) / 2.
-struct FrameSums {
-    double all[10] = {};
-    double signed_by[2][9] = {};
-};
+using detail::FrameSums;
 
 /// Gathers FrameSums over the points of `runs` within `radius` of home and within `tolerance` of
 /// the plane through `c` (local coordinates relative to home) with unit normal `n` and in-plane
@@ -139,15 +131,8 @@ struct FrameSums {
     const float h[3] = {home.x(), home.y(), home.z()};
     const float cc[3] = {c.x(), c.y(), c.z()}, uu[3] = {u.x(), u.y(), u.z()};
     const float vv[3] = {v.x(), v.y(), v.z()}, nn[3] = {n.x(), n.y(), n.z()};
-    const detail::RawFrameSums s =
-        detail::kernels().frame_sums(detail::arrays_of(index), runs.data(), runs.size(), h,
-                                     radius * radius, cc, uu, vv, nn, tolerance);
-    FrameSums out;
-    std::copy(std::begin(s.all), std::end(s.all), std::begin(out.all));
-    for (int a = 0; a < 2; ++a)
-        std::copy(std::begin(s.signed_by[a]), std::end(s.signed_by[a]),
-                  std::begin(out.signed_by[a]));
-    return out;
+    return detail::kernels().frame_sums(detail::arrays_of(index), runs.data(), runs.size(), h,
+                                        radius * radius, cc, uu, vv, nn, tolerance);
 }
 
 /// A point another surface took from its first owner: enough to give it back.

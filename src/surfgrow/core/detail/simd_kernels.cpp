@@ -14,32 +14,37 @@ extern const KernelTable kernel_table_avx512;
 
 namespace {
 
-bool cpu_has(const char* isa) {
-    if (std::strcmp(isa, "baseline") == 0) return true;
-#if defined(SURFGROW_KERNELS_X86)
-    if (std::strcmp(isa, "avx2") == 0) return __builtin_cpu_supports("avx2");
-    if (std::strcmp(isa, "avx512") == 0)
-        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-               __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-#endif
-    return false;
-}
+struct Path {
+    const KernelTable* table;
+    bool (*cpu_has)();
+};
 
-const KernelTable* table_of(const char* isa) {
+// Widest first.
+const Path kPaths[] = {
 #if defined(SURFGROW_KERNELS_X86)
-    if (std::strcmp(isa, "avx2") == 0) return &kernel_table_avx2;
-    if (std::strcmp(isa, "avx512") == 0) return &kernel_table_avx512;
+    {&kernel_table_avx512,
+     [] {
+         return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+     }},
+    {&kernel_table_avx2, [] { return bool(__builtin_cpu_supports("avx2")); }},
 #endif
-    return std::strcmp(isa, "baseline") == 0 ? &kernel_table_baseline : nullptr;
+    {&kernel_table_baseline, [] { return true; }},
+};
+
+const Path* path_of(const char* isa) {
+    for (const Path& p : kPaths)
+        if (std::strcmp(p.table->isa, isa) == 0) return &p;
+    return nullptr;
 }
 
 // The widest set the CPU has; SURFGROW_SIMD=<isa> caps it (to compare paths, or to rule one out).
 const KernelTable* detect() {
     const char* cap = std::getenv("SURFGROW_SIMD");
-    bool allowed = !cap || !*cap || !table_of(cap);
-    for (const char* isa : {"avx512", "avx2", "baseline"}) {
-        allowed = allowed || std::strcmp(isa, cap) == 0;
-        if (allowed && cpu_has(isa)) return table_of(isa);
+    bool allowed = !cap || !path_of(cap);
+    for (const Path& p : kPaths) {
+        allowed = allowed || std::strcmp(p.table->isa, cap) == 0;
+        if (allowed && p.cpu_has()) return p.table;
     }
     return &kernel_table_baseline;
 }
@@ -55,7 +60,8 @@ const KernelTable& kernels() {
 }
 
 const KernelTable* kernels_for(const char* isa) {
-    return cpu_has(isa) ? table_of(isa) : nullptr;
+    const Path* p = path_of(isa);
+    return p && p->cpu_has() ? p->table : nullptr;
 }
 
 KernelOverride::KernelOverride(const KernelTable& table)

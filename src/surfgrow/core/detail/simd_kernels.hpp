@@ -34,10 +34,14 @@ struct RawMoments {
     double v[10];
 };
 
-/// The sums of FrameSums (neighbourhood.hpp).
-struct RawFrameSums {
-    double all[10];
-    double signed_by[2][9];
+/// A neighbourhood's inliers in a plane's own frame: q = (u, v, r), the coordinates along two
+/// in-plane axes and the normal relative to a point c of the plane. `all` holds, over the inliers,
+/// the sums of 1, u, v, r, uu, uv, ur, vv, vr, rr; `signed_by[a]` the same sums (but rr) with
+/// each point weighted by the sign of its coordinate along axis a (u or v): the two halves of the
+/// neighbourhood across that axis are (all + signed) / 2 and (all - signed) / 2.
+struct FrameSums {
+    double all[10] = {};
+    double signed_by[2][9] = {};
 };
 
 /// One kernel table per instruction set.
@@ -57,9 +61,9 @@ struct KernelTable {
     std::uint32_t (*on_plane)(PointArrays pts, std::uint32_t begin, std::uint32_t end,
                               const float home[3], float r2, const float normal[3], float offset,
                               float tolerance, std::uint32_t* out, float* distance);
-    RawFrameSums (*frame_sums)(PointArrays pts, const IndexRun* runs, std::size_t count,
-                               const float home[3], float r2, const float c[3], const float u[3],
-                               const float v[3], const float n[3], float tolerance);
+    FrameSums (*frame_sums)(PointArrays pts, const IndexRun* runs, std::size_t count,
+                            const float home[3], float r2, const float c[3], const float u[3],
+                            const float v[3], const float n[3], float tolerance);
 };
 
 /// The table for this CPU: the widest instruction set it has that the build compiled a table for.

@@ -26,6 +26,17 @@ FloatV load(const float* p, std::uint32_t i) {
     return FloatV(p + i, stdx::element_aligned);
 }
 
+/// Points i .. i + W - 1 relative to (cx, cy, cz), one vector per axis.
+struct Offsets {
+    FloatV x, y, z;
+    [[nodiscard]] FloatV norm2() const { return x * x + y * y + z * z; }
+};
+
+Offsets offsets(PointArrays p, std::uint32_t i, const FloatV& cx, const FloatV& cy,
+                const FloatV& cz) {
+    return {load(p.x, i) - cx, load(p.y, i) - cy, load(p.z, i) - cz};
+}
+
 double total(const FloatV& v) {
     return static_cast<double>(stdx::reduce(v));
 }
@@ -46,9 +57,7 @@ RawMoments moments(PointArrays p, const IndexRun* runs, std::size_t count, const
     for (std::size_t r = 0; r < count; ++r) {
         const IndexRun run = runs[r];
         for (std::uint32_t i = run.begin; i < run.end; i += W) {
-            const FloatV dx = load(p.x, i) - hx;
-            const FloatV dy = load(p.y, i) - hy;
-            const FloatV dz = load(p.z, i) - hz;
+            const auto [dx, dy, dz] = offsets(p, i, hx, hy, hz);
             const auto m =
                 (dx * dx + dy * dy + dz * dz <= rr) && (lane < static_cast<float>(run.end - i));
             stdx::where(m, n) += 1.f;
@@ -74,10 +83,8 @@ std::uint32_t within(PointArrays pts, std::uint32_t begin, std::uint32_t end, co
     const IntV skipv = skip;
     std::uint32_t found = 0;
     for (std::uint32_t i = begin; i < end; i += W) {
-        const FloatV dx = load(pts.x, i) - px;
-        const FloatV dy = load(pts.y, i) - py;
-        const FloatV dz = load(pts.z, i) - pz;
-        const auto m = (dx * dx + dy * dy + dz * dz <= rr) && (lane < static_cast<float>(end - i));
+        const Offsets d = offsets(pts, i, px, py, pz);
+        const auto m = (d.norm2() <= rr) && (lane < static_cast<float>(end - i));
         if (stdx::none_of(m)) continue;
         std::uint32_t bits = bits_of(m);
         if (labels) bits &= bits_of(IntV(labels + i, stdx::element_aligned) != skipv);
@@ -99,12 +106,9 @@ std::uint32_t on_plane(PointArrays pts, std::uint32_t begin, std::uint32_t end, 
     alignas(64) float d[W];
     std::uint32_t found = 0;
     for (std::uint32_t i = begin; i < end; i += W) {
-        const FloatV dx = load(pts.x, i) - hx;
-        const FloatV dy = load(pts.y, i) - hy;
-        const FloatV dz = load(pts.z, i) - hz;
-        const FloatV dist = stdx::abs(dx * nx + dy * ny + dz * nz - off);
-        const auto m = (dx * dx + dy * dy + dz * dz <= rr) && (dist <= tol) &&
-                       (lane < static_cast<float>(end - i));
+        const Offsets q = offsets(pts, i, hx, hy, hz);
+        const FloatV dist = stdx::abs(q.x * nx + q.y * ny + q.z * nz - off);
+        const auto m = (q.norm2() <= rr) && (dist <= tol) && (lane < static_cast<float>(end - i));
         if (stdx::none_of(m)) continue;
         dist.copy_to(d, stdx::element_aligned);
         std::uint32_t bits = bits_of(m);
@@ -118,9 +122,9 @@ std::uint32_t on_plane(PointArrays pts, std::uint32_t begin, std::uint32_t end, 
     return found;
 }
 
-RawFrameSums frame_sums(PointArrays pts, const IndexRun* runs, std::size_t count,
-                        const float home[3], float r2, const float c[3], const float u[3],
-                        const float v[3], const float n[3], float tolerance) {
+FrameSums frame_sums(PointArrays pts, const IndexRun* runs, std::size_t count, const float home[3],
+                     float r2, const float c[3], const float u[3], const float v[3],
+                     const float n[3], float tolerance) {
     const FloatV lane = lanes();
     const FloatV hx = home[0], hy = home[1], hz = home[2], rr = r2;
     const FloatV cx = c[0], cy = c[1], cz = c[2], tol = tolerance;
@@ -131,12 +135,10 @@ RawFrameSums frame_sums(PointArrays pts, const IndexRun* runs, std::size_t count
     for (std::size_t k = 0; k < count; ++k) {
         const IndexRun run = runs[k];
         for (std::uint32_t i = run.begin; i < run.end; i += W) {
-            const FloatV px = load(pts.x, i) - hx;
-            const FloatV py = load(pts.y, i) - hy;
-            const FloatV pz = load(pts.z, i) - hz;
-            const FloatV dx = px - cx, dy = py - cy, dz = pz - cz;
+            const Offsets q = offsets(pts, i, hx, hy, hz);
+            const FloatV dx = q.x - cx, dy = q.y - cy, dz = q.z - cz;
             const FloatV r = dx * n[0] + dy * n[1] + dz * n[2];
-            const auto in = (px * px + py * py + pz * pz <= rr) && (stdx::abs(r) <= tol) &&
+            const auto in = (q.norm2() <= rr) && (stdx::abs(r) <= tol) &&
                             (lane < static_cast<float>(run.end - i));
             if (stdx::none_of(in)) continue;
             FloatV w = 0;
@@ -155,7 +157,7 @@ RawFrameSums frame_sums(PointArrays pts, const IndexRun* runs, std::size_t count
             }
         }
     }
-    RawFrameSums out;
+    FrameSums out;
     for (int k = 0; k < 10; ++k) out.all[k] = total(all[k]);
     for (int a = 0; a < 2; ++a)
         for (int k = 0; k < 9; ++k) out.signed_by[a][k] = total(sgn[a][k]);
