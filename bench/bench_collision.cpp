@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include "surfgrow/core/collision_spheres.hpp"
+#include "surfgrow/robot/collision_spheres.hpp"
 
 namespace surfgrow::bench {
 namespace {

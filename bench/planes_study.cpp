@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "surfgrow/core/bound_planes.hpp"
-#include "surfgrow/core/coverage.hpp"
-#include "surfgrow/core/segmentation_score.hpp"
 #include "surfgrow/core/surface_grower.hpp"
+#include "surfgrow/eval/segmentation_score.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
+#include "surfgrow/robot/coverage.hpp"
 #include "surfgrow/scanner/builtin_scenes.hpp"
 #include "surfgrow/scanner/fuse.hpp"
 #include "surfgrow/scanner/scan_simulator.hpp"
@@ -34,7 +34,7 @@ void study(const std::string& name) {
     for (std::int32_t& l : cloud.labels)
         if (l >= 0 && !scene.faces()[static_cast<std::size_t>(l)].planar()) l = -1;
     const GrowResult grown = grow_surfaces(cloud, GrowerConfig{});
-    const std::vector<std::int32_t> pieces = truth_pieces(cloud.points, cloud.labels, 0.024);
+    const std::vector<std::int32_t> pieces = eval::truth_pieces(cloud.points, cloud.labels, 0.024);
     std::printf("\n%s: %zu points, %zu surfaces, %.1f%% registered\n", name.c_str(), cloud.size(),
                 grown.surfaces.size(), 100 * grown.stats.registered_fraction());
     std::printf(
@@ -56,8 +56,8 @@ void study(const std::string& name) {
             const BoundPlanes planes = compute_bound_planes(cloud, grown, cfg);
             const double secs = seconds_since(t0);
             const std::vector<std::int32_t> found = plane_labels(planes, grown.labels);
-            const SegmentationScore f = score_segmentation(cloud.labels, found);
-            const SegmentationScore p = score_segmentation(pieces, found);
+            const eval::SegmentationScore f = eval::score_segmentation(cloud.labels, found);
+            const eval::SegmentationScore p = eval::score_segmentation(pieces, found);
             std::printf(
                 "%6.0f %6.1f %5.0f | %6zu %6.2f | %5llu %4llu %5llu %3llu | %6llu %4llu %5llu "
                 "%3llu | "
@@ -73,7 +73,7 @@ void study(const std::string& name) {
     // Defaults: which faces split or merge, and coverage.
     const BoundPlanes planes = compute_bound_planes(cloud, grown, BoundPlaneConfig{});
     const std::vector<std::int32_t> found = plane_labels(planes, grown.labels);
-    const SegmentationScore f = score_segmentation(cloud.labels, found);
+    const eval::SegmentationScore f = eval::score_segmentation(cloud.labels, found);
     for (const std::int32_t face : f.over_faces) {
         const auto& fc = scene.faces()[static_cast<std::size_t>(face)];
         std::printf("  over-segmented face %d (%s)\n", face,

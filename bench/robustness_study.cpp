@@ -21,11 +21,11 @@
 #include <string>
 #include <vector>
 
-#include "surfgrow/core/bound_planes.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/eval/evaluation.hpp"
 #include "surfgrow/eval/face_detection.hpp"
 #include "surfgrow/eval/plane_evaluation.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
 #include "surfgrow/scanner/builtin_scenes.hpp"
 #include "surfgrow/scanner/fuse.hpp"
 #include "surfgrow/scanner/scan_simulator.hpp"

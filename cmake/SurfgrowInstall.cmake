@@ -8,7 +8,7 @@ install(TARGETS ${libraries} EXPORT surfgrowTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 
 # Headers of the parts that were built; detail/ too, as public headers include some of it.
-set(parts core scanner io eval)
+set(parts core planes robot pipeline scanner io eval)
 if(SURFGROW_BUILD_RENDER)
     list(APPEND parts render)
 endif()

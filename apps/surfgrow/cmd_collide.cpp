@@ -7,14 +7,16 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "surfgrow/core/collision_spheres.hpp"
+#include "exit_status.hpp"
 #include "surfgrow/core/error.hpp"
-#include "surfgrow/core/robot_model.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/atomic_output.hpp"
 #include "surfgrow/io/collision_io.hpp"
+#include "surfgrow/io/result_folder.hpp"
 #include "surfgrow/io/results_io.hpp"
 #include "surfgrow/io/robot_file.hpp"
+#include "surfgrow/robot/collision_spheres.hpp"
+#include "surfgrow/robot/robot_model.hpp"
 
 namespace surfgrow::cli {
 
@@ -54,7 +56,7 @@ void add_collide_command(CLI::App& app) {
     cmd->add_flag("-q,--quiet", args->quiet, "No per-link lines on stdout");
     cmd->callback([args] {
         const std::filesystem::path dir = args->dir;
-        const io::StoredResult stored = io::read_result_json(dir / "surfaces.json");
+        const io::StoredResult stored = io::read_result_folder(dir).result;
         const double metres = unit_to_metres(stored.meta.units, "surfaces.json units");
         const double tolerance = parse_length_m(args->tolerance, "--tolerance") / metres;
         if (tolerance < 0)
@@ -94,10 +96,11 @@ void add_collide_command(CLI::App& app) {
                       << std::endl;
         }
         if (args->fail && colliding > 0)
-            throw Error(ErrorCode::kCollision,
-                        cat({std::to_string(colliding), " of ", std::to_string(robot.links.size()),
-                             " robot links are closer than ", format_length(tolerance * metres),
-                             " to the environment (", report.string(), ")"}));
+            throw OutcomeError(
+                Outcome::kCollision,
+                cat({std::to_string(colliding), " of ", std::to_string(robot.links.size()),
+                     " robot links are closer than ", format_length(tolerance * metres),
+                     " to the environment (", report.string(), ")"}));
     });
 }
 

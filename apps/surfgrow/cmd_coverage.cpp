@@ -5,10 +5,11 @@
 #include "commands.hpp"
 #include "coverage_options.hpp"
 #include "planes_options.hpp"
-#include "result_folder.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/planes_io.hpp"
+#include "surfgrow/io/result_folder.hpp"
+#include "surfgrow/io/result_outputs.hpp"
 
 namespace surfgrow::cli {
 
@@ -36,7 +37,7 @@ void add_coverage_command(CLI::App& app) {
     cmd->callback([args] {
         namespace fs = std::filesystem;
         const fs::path dir = args->dir;
-        const io::StoredResult result = read_grown_result(dir);
+        const io::StoredResult result = io::read_grown_result(dir);
         const double metres = unit_to_metres(result.meta.units, "units in surfaces.json");
         const CoverageConfig config =
             args->coverage.config(metres, result.meta.offset, args->threads);
@@ -54,18 +55,18 @@ void add_coverage_command(CLI::App& app) {
                          (dir / "surfaces.json").string(), " has ",
                          std::to_string(result.surfaces.size()), ": run `surfgrow planes` again"}));
         } else if (!args->cloud.empty()) {
-            const GrownFolder f = read_grown_folder(dir, args->cloud);
+            const io::GrownFolder f = io::read_grown_folder(dir, args->cloud);
             planes = compute_bound_planes(
                 f.cloud, f.result.surfaces, f.labels,
                 PlanesOptions{}.config(metres, f.result.config.mu, args->threads));
-            stage_planes(tx, planes, result.meta, false);
+            io::stage_planes(tx, planes, result.meta, false);
         } else {
             throw Error(ErrorCode::kCannotOpen,
                         cat({(dir / "planes.json").string(), " is missing: run `surfgrow planes ",
                              dir.string(), " --cloud CLOUD` first, or give --cloud"}));
         }
         const CoveragePlan plan = plan_coverage(planes, result.surfaces, config);
-        stage_coverage(tx, plan, result.meta);
+        io::stage_coverage(tx, plan, result.meta);
         tx.commit();
         if (!args->quiet) std::cout << coverage_summary(plan, result.meta.units) << std::endl;
     });

@@ -41,8 +41,9 @@ void add_demo_command(CLI::App& app) {
         const CloudUnits units = args->grow.units();
         if (units.name != "m")
             throw Error(ErrorCode::kUsage, "demo: the simulated cloud is in metres (no --units)");
-        GrowerConfig config = args->grow.config(units);
-        config.progress = terminal_progress();
+        PipelineConfig config;
+        config.grow = args->grow.config(units);
+        config.grow.progress = terminal_progress();
         const eval::EvalOptions eval_options = args->eval.options();
         const std::vector<eval::Requirement> requirements = args->eval.requirements();
         ScanSettings scan;
@@ -56,17 +57,17 @@ void add_demo_command(CLI::App& app) {
         const GrowRun run =
             grow_and_write(data.cloud, config, out, OutputChoice{}, units, "scan/cloud.ply",
                            data.simulate_seconds + data.fuse_seconds);
+        const GrowResult& grown = run.result.grow;
         eval::EvalReport report =
-            eval::evaluate(data.cloud, run.result, data.scene->faces(), eval_options);
-        if (run.planes)
-            eval::add_plane_figures(
-                report, data.cloud,
-                eval::GrowOutcome{run.result.surfaces, run.result.labels, &run.result.stats},
-                *run.planes, data.scene->faces());
+            eval::evaluate(data.cloud, grown, data.scene->faces(), eval_options);
+        if (run.result.planes)
+            eval::add_plane_figures(report, data.cloud,
+                                    eval::GrowOutcome{grown.surfaces, grown.labels, &grown.stats},
+                                    *run.result.planes, data.scene->faces());
         const auto checks = eval::check_requirements(requirements, report);
         write_eval_json(out / "eval.json", report, checks);
         if (!args->quiet) {
-            std::cout << summary_line(run.result.stats) << "\n"
+            std::cout << summary_line(grown.stats) << "\n"
                       << eval::eval_line(report) << "\n"
                       << eval::bands_line(report) << "\n"
                       << eval::requirements_text(checks);

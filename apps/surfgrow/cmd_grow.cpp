@@ -1,5 +1,4 @@
 // `surfgrow grow CLOUD -o DIR`: the main job.
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 
@@ -9,6 +8,7 @@
 #include "grow_options.hpp"
 #include "grow_pipeline.hpp"
 #include "planes_options.hpp"
+#include "surfgrow/core/stopwatch.hpp"
 #include "surfgrow/io/cloud_io.hpp"
 
 namespace surfgrow::cli {
@@ -25,6 +25,7 @@ void add_grow_command(CLI::App& app) {
         CoverageOptions coverage;
         bool no_planes = false;
         bool no_coverage = false;
+        bool collision = true;
         bool quiet = false;
         bool stats = false;
     };
@@ -34,8 +35,8 @@ void add_grow_command(CLI::App& app) {
     cmd->add_option("-o,--out", args->out, "Output folder (created; outputs replaced as a whole)")
         ->capture_default_str();
     args->grow.add_to(*cmd);
-    cmd->add_flag("!--no-labels", args->outputs.labels, "Do not write labels.txt");
-    cmd->add_flag("--csv", args->outputs.csv, "Also write surfaces.csv");
+    cmd->add_flag("!--no-labels", args->outputs.files.labels, "Do not write labels.txt");
+    cmd->add_flag("--csv", args->outputs.files.csv, "Also write surfaces.csv");
     cmd->add_flag("!--no-picture", args->outputs.picture, "Do not render surfaces.png");
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
     cmd->add_flag("--stats", args->stats,
@@ -45,43 +46,45 @@ void add_grow_command(CLI::App& app) {
     robot->add_flag("--no-planes", args->no_planes,
                     "Do not write planes.json/planes.ply (nor coverage, which needs them)");
     robot->add_flag("--no-coverage", args->no_coverage, "Do not write coverage.json/coverage.csv");
-    robot->add_flag("!--no-occupancy", args->outputs.occupancy,
+    robot->add_flag("!--no-occupancy", args->outputs.files.occupancy,
                     "Do not write occupancy.ply/occupancy.json");
-    robot->add_flag("!--no-octomap", args->outputs.octomap, "Do not write environment.bt");
-    robot->add_flag("!--no-collision", args->outputs.collision,
-                    "Do not write collision_spheres.json");
+    robot->add_flag("!--no-octomap", args->outputs.files.octomap, "Do not write environment.bt");
+    robot->add_flag("!--no-collision", args->collision, "Do not write collision_spheres.json");
     args->planes.add_to(*cmd->add_option_group("Bound planes (planes.json, planes.ply)"));
     args->coverage.add_to(*cmd->add_option_group("Coverage (coverage.json, coverage.csv)"));
     cmd->callback([args] {
         const CloudUnits units = args->grow.units();
-        const auto t0 = std::chrono::steady_clock::now();
+        const Stopwatch read;
         const PointCloud cloud = io::read_cloud(args->input);
-        const double read_s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        GrowerConfig config = args->grow.config(units);
-        // --start is in file coordinates: the cloud's offset moves it into the grower's frame.
-        args->outputs.planes.reset();
-        args->outputs.coverage.reset();
+        const double read_s = read.seconds();
+        PipelineConfig config;
+        config.grow = args->grow.config(units);
+        config.planes.reset();
+        config.coverage.reset();
         if (!args->no_planes) {
-            args->outputs.planes = args->planes.config(units.metres, config.mu, config.threads);
-            args->outputs.planes_obj = args->planes.obj;
+            config.planes = args->planes.config(units.metres, config.grow.mu, config.grow.threads);
+            args->outputs.files.planes_obj = args->planes.obj;
+            // --start is in file coordinates: the cloud's offset moves it into the grower's frame.
             if (!args->no_coverage)
-                args->outputs.coverage =
-                    args->coverage.config(units.metres, cloud.offset, config.threads);
+                config.coverage =
+                    args->coverage.config(units.metres, cloud.offset, config.grow.threads);
         }
-        config.progress = terminal_progress();
+        config.occupancy = args->outputs.files.occupancy || args->outputs.files.octomap;
+        config.collision = args->collision;
+        config.grow.progress = terminal_progress();
         const GrowRun run =
             grow_and_write(cloud, config, args->out, args->outputs, units,
                            std::filesystem::path(args->input).filename().string(), read_s);
-        if (!args->quiet) std::cout << summary_line(run.result.stats) << std::endl;
+        if (!args->quiet) std::cout << summary_line(run.result.grow.stats) << std::endl;
         if (args->stats) {
-            std::cout << stats_table(run.result.stats, units);
+            std::cout << stats_table(run.result.grow.stats, units);
             for (const std::string* line :
                  {&run.robot.planes, &run.robot.coverage, &run.robot.occupancy})
                 if (!line->empty()) std::cout << *line << "\n";
             std::cout << std::flush;
         }
-        if (const std::string hint = sparsity_hint(run.result.stats, config, units); !hint.empty())
+        if (const std::string hint = sparsity_hint(run.result.grow.stats, config.grow, units);
+            !hint.empty())
             std::cerr << hint << std::endl;
     });
 }

@@ -8,9 +8,9 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/cloud_io.hpp"
-#include "surfgrow/io/result_workspace.hpp"
+#include "surfgrow/io/result_folder.hpp"
+#include "surfgrow/io/result_outputs.hpp"
 #include "surfgrow/io/results_io.hpp"
-#include "surfgrow/io/robot_outputs.hpp"
 
 namespace surfgrow::cli {
 
@@ -49,9 +49,8 @@ void add_occupancy_command(CLI::App& app) {
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
     cmd->callback([args] {
         const std::filesystem::path dir = args->dir;
-        io::StoredResult stored = io::read_result_json(dir / "surfaces.json");
-        GrowerConfig config = stored.config;
-        io::read_workspace_parameters(dir / "surfaces.json", config);
+        const io::StoredResult stored = io::read_result_folder(dir).result;
+        GrowerConfig config = stored.config;  // the workspace (crop, viewpoint) included
         const double metres = unit_to_metres(stored.meta.units, "surfaces.json units");
         if (!args->viewpoint.empty())
             config.viewpoint = parse_vec3_length_m(args->viewpoint, "--viewpoint") / metres;
@@ -94,8 +93,9 @@ void add_occupancy_command(CLI::App& app) {
         io::OccupancyOutputs which;
         which.octomap = !args->no_octomap;
         io::OutputTransaction tx(dir);
+        const OccupancyGrid grid = occupancy_grid(cloud, labels, config);
         const io::OccupancySummary s =
-            io::add_occupancy_outputs(tx, cloud, labels, config, stored.meta, which);
+            io::stage_occupancy(tx, grid, cloud, config, stored.meta, which);
         tx.commit();
         if (args->quiet) return;
         std::string line = cat({count_text(s.occupied_cubes), " occupied cubes of ",

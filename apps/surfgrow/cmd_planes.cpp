@@ -4,8 +4,9 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "planes_options.hpp"
-#include "result_folder.hpp"
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/io/result_folder.hpp"
+#include "surfgrow/io/result_outputs.hpp"
 
 namespace surfgrow::cli {
 
@@ -27,7 +28,7 @@ void add_planes_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
     cmd->callback([args] {
-        const GrownFolder f = read_grown_folder(args->dir, args->cloud);
+        const io::GrownFolder f = io::read_grown_folder(args->dir, args->cloud);
         const io::ResultMeta& meta = f.result.meta;
         const BoundPlaneConfig config =
             args->planes.config(unit_to_metres(meta.units, "units in surfaces.json"),
@@ -35,7 +36,7 @@ void add_planes_command(CLI::App& app) {
         const BoundPlanes planes =
             compute_bound_planes(f.cloud, f.result.surfaces, f.labels, config);
         io::OutputTransaction tx(args->dir);
-        stage_planes(tx, planes, meta, args->planes.obj);
+        io::stage_planes(tx, planes, meta, args->planes.obj);
         tx.commit();
         if (!args->quiet) std::cout << planes_summary(planes, meta.units) << std::endl;
     });

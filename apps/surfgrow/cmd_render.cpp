@@ -5,11 +5,11 @@
 
 #include "commands.hpp"
 #include "picture_options.hpp"
-#include "result_folder.hpp"
 #include "result_layers.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/atomic_output.hpp"
+#include "surfgrow/io/result_folder.hpp"
 #include "surfgrow/render/png.hpp"
 #include "surfgrow/render/renderer.hpp"
 #include "surfgrow/render/scene_builder.hpp"
@@ -47,7 +47,7 @@ void run_render(const RenderArgs& a) {
         throw Error(ErrorCode::kUsage,
                     "--points needs --cloud: the cloud the result was grown from");
 
-    const ResultFolder folder = read_result_folder(a.dir);
+    const io::ResultFolder folder = io::read_result_folder(a.dir);
     const io::StoredResult& r = folder.result;
     render::SurfaceStyle style;
     style.normals = a.normals;
@@ -67,7 +67,7 @@ void run_render(const RenderArgs& a) {
         {render::legend_line(r.stats.points_in, r.stats.surfaces, r.stats.registered_fraction()),
          colouring});
     if (!a.cloud.empty()) {
-        const GrownCloud g = read_grown_cloud(a.cloud, folder);
+        const io::GrownCloud g = io::read_grown_cloud(a.cloud, folder);
         render::add_points(scene, g.cloud, g.labels, r.surfaces.size(), style);
     }
     options.units = r.meta.units;

@@ -5,11 +5,11 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "result_folder.hpp"
 #include "result_layers.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/atomic_output.hpp"
+#include "surfgrow/io/result_folder.hpp"
 #include "surfgrow/render/scene_builder.hpp"
 #include "surfgrow/view/subsample.hpp"
 #include "surfgrow/view/viewer_html.hpp"
@@ -37,9 +37,9 @@ std::string grouped(std::uint64_t n) {
 
 // The cloud layer: at most max_points points, coloured by surface as in the PNG, each with the
 // index of its disk (`scene` holds the disks).
-void add_cloud(view::ViewerScene& s, render::Scene& scene, const ResultFolder& folder,
+void add_cloud(view::ViewerScene& s, render::Scene& scene, const io::ResultFolder& folder,
                const std::string& file, std::size_t max_points) {
-    const GrownCloud g = read_grown_cloud(file, folder);
+    const io::GrownCloud g = io::read_grown_cloud(file, folder);
     const std::vector<std::uint32_t> keep = view::choose_points(g.cloud, max_points);
     PointCloud shown;
     std::vector<std::int32_t> labels;
@@ -64,7 +64,7 @@ void run_view(const ViewArgs& a) {
         throw Error(
             ErrorCode::kInvalidParameter,
             cat({"--max-points must be 0 (no cloud) or more, got ", std::to_string(a.max_points)}));
-    const ResultFolder folder = read_result_folder(a.dir);
+    const io::ResultFolder folder = io::read_result_folder(a.dir);
     const io::StoredResult& r = folder.result;
     const ResultLayers layers = read_result_layers(folder.dir, r);
 

@@ -63,12 +63,6 @@ CoverageConfig CoverageOptions::config(double metres, const Vec3d& offset, int t
     return c;
 }
 
-void stage_coverage(io::OutputTransaction& tx, const CoveragePlan& plan,
-                    const io::ResultMeta& meta) {
-    tx.add("coverage.json", [&](std::ostream& o) { io::write_coverage_json(o, plan, meta); });
-    tx.add("coverage.csv", [&](std::ostream& o) { io::write_coverage_csv(o, plan, meta); });
-}
-
 std::string coverage_summary(const CoveragePlan& plan, const std::string& units) {
     const CoverageStats& s = plan.stats;
     char buf[256];

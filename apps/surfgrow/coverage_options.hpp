@@ -1,13 +1,11 @@
 // The options of `surfgrow coverage` (lengths with units, the angle band in degrees) and its
-// outputs.
+// summary line.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "surfgrow/core/coverage.hpp"
-#include "surfgrow/io/atomic_output.hpp"
-#include "surfgrow/io/results_io.hpp"
+#include "surfgrow/robot/coverage.hpp"
 
 namespace surfgrow::cli {
 
@@ -27,10 +25,6 @@ struct CoverageOptions {
     /// Error(kInvalidParameter) for values out of range.
     [[nodiscard]] CoverageConfig config(double metres, const Vec3d& offset, int threads) const;
 };
-
-/// Stages coverage.json and coverage.csv.
-void stage_coverage(io::OutputTransaction& tx, const CoveragePlan& plan,
-                    const io::ResultMeta& meta);
 
 /// "24990 goals on 322 planes, 99.8% covered, tool path 620.4 m, 321 transitions".
 std::string coverage_summary(const CoveragePlan& plan, const std::string& units);

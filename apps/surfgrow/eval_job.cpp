@@ -1,5 +1,7 @@
 #include "eval_job.hpp"
 
+#include "exit_status.hpp"
+
 #include <cmath>
 
 #include "cli_common.hpp"
@@ -10,6 +12,7 @@
 #include "surfgrow/io/atomic_output.hpp"
 #include "surfgrow/io/cloud_io.hpp"
 #include "surfgrow/io/planes_io.hpp"
+#include "surfgrow/io/result_folder.hpp"
 #include "surfgrow/io/results_io.hpp"
 #include "surfgrow/io/scene_file.hpp"
 #include "surfgrow/io/truth_faces_file.hpp"
@@ -80,7 +83,7 @@ std::optional<std::vector<scanner::Face>> read_truth_faces_in(const fs::path& di
 
 eval::EvalReport evaluate_folder(const fs::path& result_dir, const Truth& truth,
                                  const eval::EvalOptions& options) {
-    io::StoredResult result = io::read_result_json(result_dir / "surfaces.json");
+    io::StoredResult result = io::read_result_folder(result_dir).result;
     const std::vector<std::int32_t> labels = io::read_labels_txt(result_dir / "labels.txt");
     if (labels.size() != truth.cloud.size())
         throw Error(
@@ -133,9 +136,9 @@ void enforce(const std::vector<eval::RequirementCheck>& checks) {
                        std::isfinite(c.value) ? num(c.value) : std::string("n/a"), ")"});
     }
     if (count)
-        throw Error(ErrorCode::kRequirementFailed,
-                    cat({std::to_string(count), " of ", std::to_string(checks.size()),
-                         " requirements failed: ", failed}));
+        throw OutcomeError(Outcome::kRequirementFailed,
+                           cat({std::to_string(count), " of ", std::to_string(checks.size()),
+                                " requirements failed: ", failed}));
 }
 
 }  // namespace surfgrow::cli

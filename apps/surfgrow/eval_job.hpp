@@ -53,7 +53,7 @@ struct Truth {
 void write_eval_json(const std::filesystem::path& file, const eval::EvalReport& report,
                      const std::vector<eval::RequirementCheck>& checks);
 
-/// Throws Error(kRequirementFailed) naming every bound that does not hold.
+/// Throws OutcomeError(kRequirementFailed) naming every bound that does not hold.
 void enforce(const std::vector<eval::RequirementCheck>& checks);
 
 }  // namespace surfgrow::cli

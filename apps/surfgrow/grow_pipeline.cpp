@@ -1,6 +1,5 @@
 #include "grow_pipeline.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -8,26 +7,17 @@
 #include "cli_common.hpp"
 #include "coverage_options.hpp"
 #include "planes_options.hpp"
+#include "surfgrow/core/stopwatch.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/atomic_output.hpp"
+#include "surfgrow/io/result_outputs.hpp"
 #include "surfgrow/io/results_io.hpp"
-#include "surfgrow/io/robot_outputs.hpp"
 #include "surfgrow/render/png.hpp"
 #include "surfgrow/render/renderer.hpp"
 #include "surfgrow/render/scene_builder.hpp"
 #include "surfgrow/version.hpp"
 
 namespace surfgrow::cli {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-}  // namespace
 
 render::Image render_surfaces(const GrowResult& result, const std::string& units, int threads) {
     render::Scene scene = render::scene_from_surfaces(result.surfaces);
@@ -131,84 +121,55 @@ std::function<void(std::string_view, double)> terminal_progress() {
     return [](std::string_view stage, double fraction) {
         std::fprintf(stderr, "\r%-8.*s %5.1f%%", static_cast<int>(stage.size()), stage.data(),
                      100.0 * fraction);
-        if (stage == "finish") std::fprintf(stderr, "\r%20s\r", "");
+        if (stage == "done") std::fprintf(stderr, "\r%20s\r", "");
         std::fflush(stderr);
     };
 }
 
-GrowRun grow_and_write(const PointCloud& cloud, const GrowerConfig& config,
+GrowRun grow_and_write(const PointCloud& cloud, const PipelineConfig& config,
                        const std::filesystem::path& out_dir, const OutputChoice& outputs,
                        const CloudUnits& units, const std::string& input_name,
                        double read_seconds) {
+    const Pipeline pipeline(config);
     GrowRun run;
     run.read_seconds = read_seconds;
-    run.result = grow_surfaces(cloud, config);
-    const GrowResult& r = run.result;
+    run.result = pipeline.run(cloud);
+    const PipelineResult& r = run.result;
+    const GrowerConfig& grow = pipeline.config().grow;
 
-    const auto t0 = Clock::now();
+    Stopwatch watch;
     io::ResultMeta meta;
     meta.units = units.name;
     meta.offset = cloud.offset;
     meta.input = input_name;
     io::OutputTransaction tx(out_dir);
-    tx.add("surfaces.ply", [&](std::ostream& o) { io::write_surfaces_ply(o, r.surfaces, meta); });
-    tx.add("surfaces.json", [&](std::ostream& o) { io::write_result_json(o, r, config, meta); });
-    if (outputs.labels)
-        tx.add("labels.txt", [&](std::ostream& o) { io::write_labels_txt(o, r.labels); });
-    if (outputs.csv)
-        tx.add("surfaces.csv",
-               [&](std::ostream& o) { io::write_surfaces_csv(o, r.surfaces, meta); });
+    const io::OccupancySummary occupancy =
+        io::stage_result(tx, cloud, pipeline.config(), r, meta, outputs.files);
     if (outputs.picture) {
-        const render::Image image = render_surfaces(r, units.name, config.threads);
+        const render::Image image = render_surfaces(r.grow, units.name, grow.threads);
         tx.add("surfaces.png", [&](std::ostream& o) { render::write_png(image, o); });
     }
-    run.write_seconds = since(t0);
+    run.write_seconds = watch.seconds();
 
-    // The robot outputs, each from the result in memory (the subcommands redo them from files).
-    nlohmann::json robot_seconds = nlohmann::json::object();
-    auto t1 = Clock::now();
-    if (outputs.planes) {
-        BoundPlaneConfig pc = *outputs.planes;
-        pc.mu = config.mu;
-        pc.threads = config.threads;
-        run.planes = compute_bound_planes(cloud, r.surfaces, r.labels, pc);
-        const BoundPlanes& planes = *run.planes;
-        stage_planes(tx, planes, meta, outputs.planes_obj);
-        run.robot.planes = planes_summary(planes, units.name);
-        robot_seconds["planes"] = since(t1);
-        if (outputs.coverage) {
-            t1 = Clock::now();
-            CoverageConfig cc = *outputs.coverage;
-            cc.threads = config.threads;
-            const CoveragePlan plan = plan_coverage(planes, r.surfaces, cc);
-            stage_coverage(tx, plan, meta);
-            run.robot.coverage = coverage_summary(plan, units.name);
-            robot_seconds["coverage"] = since(t1);
-        }
-    }
-    if (outputs.occupancy || outputs.octomap) {
-        t1 = Clock::now();
-        io::OccupancyOutputs which;
-        which.ply = which.json = outputs.occupancy;
-        which.octomap = outputs.octomap;
-        const io::OccupancySummary s = io::add_occupancy_outputs(tx, cloud, r, config, meta, which);
-        run.robot.occupancy = cat({std::to_string(s.occupied_cubes), " occupied cubes"});
-        if (s.octomap_written)
-            run.robot.occupancy +=
-                cat({", environment.bt with ", std::to_string(s.octomap.free), " free leaves"});
-        robot_seconds["occupancy"] = since(t1);
-    }
-    if (outputs.collision) {
-        t1 = Clock::now();
-        io::add_collision_outputs(tx, r, meta);
-        robot_seconds["collision"] = since(t1);
+    if (r.planes) run.robot.planes = planes_summary(*r.planes, units.name);
+    if (r.coverage) run.robot.coverage = coverage_summary(*r.coverage, units.name);
+    if (r.occupancy) {
+        run.robot.occupancy = cat({std::to_string(occupancy.occupied_cubes), " occupied cubes"});
+        if (occupancy.octomap_written)
+            run.robot.occupancy += cat(
+                {", environment.bt with ", std::to_string(occupancy.octomap.free), " free leaves"});
     }
     // run.json: what varies between identical runs (timings, threads), kept out of the results.
-    const StageTimes& t = r.stats.seconds;
+    nlohmann::json robot_seconds = nlohmann::json::object();
+    if (r.planes) robot_seconds["planes"] = r.seconds.planes;
+    if (r.coverage) robot_seconds["coverage"] = r.seconds.coverage;
+    if (r.occupancy) robot_seconds["occupancy"] = r.seconds.occupancy;
+    if (r.collision) robot_seconds["collision"] = r.seconds.collision;
+    const StageTimes& t = r.grow.stats.seconds;
     const nlohmann::json record = {
         {"surfgrow_version", SURFGROW_VERSION},
         {"input", input_name},
-        {"threads", config.threads},
+        {"threads", grow.threads},
         {"seconds",
          {{"read", read_seconds},
           {"index", t.index},
@@ -218,7 +179,7 @@ GrowRun grow_and_write(const PointCloud& cloud, const GrowerConfig& config,
           {"algorithm", t.total()},
           {"write", run.write_seconds},
           {"robot_outputs", robot_seconds}}},
-        {"summary", summary_line(r.stats)},
+        {"summary", summary_line(r.grow.stats)},
     };
     tx.add("run.json", [&](std::ostream& o) { o << record.dump(2) << "\n"; });
     tx.commit();

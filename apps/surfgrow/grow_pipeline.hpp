@@ -1,33 +1,24 @@
-// Grow a cloud and publish every output of `surfgrow grow`: shared by `grow` and `demo`.
+// Run the pipeline over a cloud and publish every output of `surfgrow grow`: shared by `grow`
+// and `demo`.
 #pragma once
 
 #include <filesystem>
 #include <optional>
 #include <string>
 
-#include "surfgrow/core/bound_planes.hpp"
-#include "surfgrow/core/coverage.hpp"
 #include "surfgrow/core/grower_config.hpp"
 #include "surfgrow/core/point_cloud.hpp"
-#include "surfgrow/core/surface_grower.hpp"
+#include "surfgrow/io/result_outputs.hpp"
+#include "surfgrow/pipeline/pipeline.hpp"
 #include "surfgrow/render/image.hpp"
 
 namespace surfgrow::cli {
 
-/// Which files to write besides surfaces.ply / surfaces.json / run.json. The robot outputs are on
-/// by default: `surfgrow grow` leaves everything a planner needs next to the surfaces.
+/// What `surfgrow grow` writes besides the pipeline's results: the files it chooses and the
+/// picture.
 struct OutputChoice {
-    bool labels = true;   ///< labels.txt
-    bool csv = false;     ///< surfaces.csv
+    io::ResultFiles files;
     bool picture = true;  ///< surfaces.png (iso view)
-    /// planes.json and planes.ply (bound planes); mu and threads are taken from the grow config.
-    std::optional<BoundPlaneConfig> planes = BoundPlaneConfig{};
-    bool planes_obj = false;  ///< also planes.obj
-    /// coverage.json and coverage.csv over the bound planes (only when planes are computed).
-    std::optional<CoverageConfig> coverage = CoverageConfig{};
-    bool occupancy = true;  ///< occupancy.ply and occupancy.json
-    bool octomap = true;    ///< environment.bt (OctoMap, free space carved from the scan origins)
-    bool collision = true;  ///< collision_spheres.json
 };
 
 /// One line per robot output that was written, for --stats: planes, coverage, occupancy.
@@ -44,16 +35,15 @@ struct CloudUnits {
 };
 
 struct GrowRun {
-    GrowResult result;
-    std::optional<BoundPlanes> planes;  ///< when computed (OutputChoice::planes)
+    PipelineResult result;
     RobotSummary robot;
     double read_seconds = 0.0;
     double write_seconds = 0.0;
 };
 
-/// Grows `cloud` with `config` and writes the outputs into `out_dir` as one transaction: either
-/// every file appears (replacing older ones) or none does.
-GrowRun grow_and_write(const PointCloud& cloud, const GrowerConfig& config,
+/// Runs the pipeline over `cloud` with `config` and writes the outputs into `out_dir` as one
+/// transaction: either every file appears (replacing older ones) or none does.
+GrowRun grow_and_write(const PointCloud& cloud, const PipelineConfig& config,
                        const std::filesystem::path& out_dir, const OutputChoice& outputs,
                        const CloudUnits& units, const std::string& input_name, double read_seconds);
 
@@ -73,7 +63,7 @@ std::string sparsity_hint(const GrowStats& stats, const GrowerConfig& config,
                           const CloudUnits& units);
 
 /// A progress callback for GrowerConfig::progress that draws on stderr when it is a terminal,
-/// or nothing otherwise.
+/// or nothing otherwise; it clears its line at the pipeline's "done".
 std::function<void(std::string_view, double)> terminal_progress();
 
 }  // namespace surfgrow::cli

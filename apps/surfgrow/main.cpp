@@ -11,6 +11,7 @@
 #endif
 
 #include "commands.hpp"
+#include "exit_status.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/version.hpp"
 
@@ -33,28 +34,33 @@ void restart_with_huge_pages([[maybe_unused]] char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    using namespace surfgrow;
+    using namespace surfgrow::cli;
     restart_with_huge_pages(argv);
     CLI::App app{
         "surfgrow: laser-scan point clouds to oriented surface patches (Paul, Liu, Kirchner)"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "surfgrow " SURFGROW_VERSION);
-    surfgrow::cli::add_all_commands(app);
+    add_all_commands(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         app.exit(e);
-        return static_cast<int>(surfgrow::ErrorCode::kUsage);
+        return exit_status(ErrorCode::kUsage);
     } catch (const surfgrow::Error& e) {
         std::fprintf(stderr, "surfgrow: error: %s\n", e.what());
-        return e.exit_code();
+        return exit_status(e.code());
+    } catch (const OutcomeError& e) {
+        std::fprintf(stderr, "surfgrow: error: %s\n", e.what());
+        return exit_status(e.outcome());
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "surfgrow: error: out of memory\n");
-        return static_cast<int>(surfgrow::ErrorCode::kInternal);
+        return exit_status(ErrorCode::kInternal);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "surfgrow: internal error: %s\n", e.what());
-        return static_cast<int>(surfgrow::ErrorCode::kInternal);
+        return exit_status(ErrorCode::kInternal);
     }
     return 0;
 }

@@ -4,9 +4,9 @@
 
 #include "cli_common.hpp"
 #include "surfgrow/core/error.hpp"
-#include "surfgrow/core/plane_mesh.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/planes_io.hpp"
+#include "surfgrow/planes/plane_mesh.hpp"
 
 namespace surfgrow::cli {
 
@@ -59,14 +59,6 @@ BoundPlaneConfig PlanesOptions::config(double metres, double mu, int threads) co
                     "--max-gap must be positive (--no-gap-bridging turns bridging off)");
     validate(c);
     return c;
-}
-
-void stage_planes(io::OutputTransaction& tx, const BoundPlanes& planes, const io::ResultMeta& meta,
-                  bool obj) {
-    const PlaneMesh mesh = mesh_bound_planes(planes);
-    tx.add("planes.json", [&](std::ostream& o) { io::write_planes_json(o, planes, meta); });
-    tx.add("planes.ply", [&](std::ostream& o) { io::write_planes_ply(o, mesh, meta); });
-    if (obj) tx.add("planes.obj", [&](std::ostream& o) { io::write_planes_obj(o, mesh, meta); });
 }
 
 std::string planes_summary(const BoundPlanes& planes, const std::string& units) {

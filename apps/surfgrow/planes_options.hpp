@@ -1,12 +1,10 @@
-// The options of `surfgrow planes` (angles in degrees, lengths with units) and its outputs.
+// The options of `surfgrow planes` (angles in degrees, lengths with units) and its summary line.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "surfgrow/core/bound_planes.hpp"
-#include "surfgrow/io/atomic_output.hpp"
-#include "surfgrow/io/results_io.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
 
 namespace surfgrow::cli {
 
@@ -27,10 +25,6 @@ struct PlanesOptions {
     /// Throws Error(kUsage) for bad syntax, Error(kInvalidParameter) for values out of range.
     [[nodiscard]] BoundPlaneConfig config(double metres, double mu, int threads) const;
 };
-
-/// Stages planes.json, planes.ply and, with `obj`, planes.obj.
-void stage_planes(io::OutputTransaction& tx, const BoundPlanes& planes, const io::ResultMeta& meta,
-                  bool obj);
 
 /// "5231 surfaces -> 14 planes, 8.36 m2 (2 degenerate)".
 std::string planes_summary(const BoundPlanes& planes, const std::string& units);

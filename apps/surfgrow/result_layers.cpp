@@ -1,11 +1,11 @@
 #include "result_layers.hpp"
 
-#include "surfgrow/core/bound_planes.hpp"
-#include "surfgrow/core/coverage.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/coverage_io.hpp"
 #include "surfgrow/io/planes_io.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
+#include "surfgrow/robot/coverage.hpp"
 
 namespace surfgrow::cli {
 

@@ -14,9 +14,9 @@
 #include <iostream>
 
 #include "peer_common.hpp"
-#include "surfgrow/core/bound_planes.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/io/cloud_io.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
 
 int main(int argc, char** argv) {
     try {

@@ -4,8 +4,8 @@
 #include <cstdio>
 
 #include "example_cloud.hpp"
-#include "surfgrow/core/collision_spheres.hpp"
 #include "surfgrow/core/surface_grower.hpp"
+#include "surfgrow/robot/collision_spheres.hpp"
 
 int main() try {
     const surfgrow::PointCloud cloud = example::room_corner();

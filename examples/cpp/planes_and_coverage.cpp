@@ -5,10 +5,10 @@
 #include <numbers>
 
 #include "example_cloud.hpp"
-#include "surfgrow/core/bound_planes.hpp"
-#include "surfgrow/core/coverage.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/io/cloud_io.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
+#include "surfgrow/robot/coverage.hpp"
 
 int main(int argc, char** argv) try {
     const surfgrow::PointCloud cloud =

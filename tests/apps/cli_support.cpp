@@ -10,12 +10,12 @@
 #include <stdexcept>
 
 #include "support/test_support.hpp"
-#include "surfgrow/core/bound_planes.hpp"
-#include "surfgrow/core/coverage.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/cloud_io.hpp"
 #include "surfgrow/io/coverage_io.hpp"
 #include "surfgrow/io/planes_io.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
+#include "surfgrow/robot/coverage.hpp"
 
 namespace surfgrow::test {
 

@@ -12,10 +12,10 @@
 
 #include "cli_support.hpp"
 #include "support/test_support.hpp"
-#include "surfgrow/core/bound_planes.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/planes_io.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
 #include "surfgrow/render/png.hpp"
 #include "surfgrow/render/renderer.hpp"
 #include "surfgrow/render/scene_builder.hpp"

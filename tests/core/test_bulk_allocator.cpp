@@ -4,9 +4,9 @@
 #include <numeric>
 #include <vector>
 
-#include "surfgrow/core/bulk_allocator.hpp"
+#include "surfgrow/core/detail/bulk_allocator.hpp"
 
-namespace surfgrow {
+namespace surfgrow::detail {
 namespace {
 
 TEST(BulkAllocator, BigBlocksAreHugePageAlignedAndHoldTheirData) {
@@ -47,4 +47,4 @@ TEST(BulkAllocator, ReserveBulkReservesAndKeepsContents) {
 }
 
 }  // namespace
-}  // namespace surfgrow
+}  // namespace surfgrow::detail

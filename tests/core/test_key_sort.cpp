@@ -4,9 +4,9 @@
 #include <numeric>
 #include <random>
 
-#include "surfgrow/core/key_sort.hpp"
+#include "surfgrow/core/detail/key_sort.hpp"
 
-namespace surfgrow {
+namespace surfgrow::detail {
 namespace {
 
 struct Case {
@@ -46,4 +46,4 @@ INSTANTIATE_TEST_SUITE_P(Sizes, KeySortTest,
                                            Case{200001, 63, 2}));
 
 }  // namespace
-}  // namespace surfgrow
+}  // namespace surfgrow::detail

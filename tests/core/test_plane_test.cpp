@@ -9,13 +9,15 @@
 
 #include "support/test_support.hpp"
 #include "surfgrow/core/cube_index.hpp"
-#include "surfgrow/core/neighbourhood.hpp"
+#include "surfgrow/core/detail/neighbourhood.hpp"
 #include "surfgrow/core/noise_profile.hpp"
 #include "surfgrow/core/plane_test.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 
 namespace surfgrow {
 namespace {
+
+using detail::TakenPoint;
 
 constexpr double kDeg = M_PI / 180.0;
 const DiskTest kTest{};

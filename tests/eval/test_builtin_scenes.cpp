@@ -12,12 +12,12 @@
 #include <string>
 #include <tuple>
 
-#include "surfgrow/core/bound_planes.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/eval/evaluation.hpp"
 #include "surfgrow/eval/plane_evaluation.hpp"
 #include "surfgrow/eval/report_text.hpp"
 #include "surfgrow/eval/requirement.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
 #include "surfgrow/scanner/builtin_scenes.hpp"
 #include "surfgrow/scanner/fuse.hpp"
 #include "surfgrow/scanner/scan_simulator.hpp"

@@ -61,7 +61,7 @@ std::string expect_error(const std::function<void()>& f, ErrorCode code, std::st
     try {
         f();
     } catch (const Error& e) {
-        EXPECT_EQ(static_cast<int>(code), e.exit_code()) << e.what();
+        EXPECT_EQ(static_cast<int>(code), static_cast<int>(e.code())) << e.what();
         EXPECT_NE(std::string(e.what()).find(needle), std::string::npos)
             << "message '" << e.what() << "' lacks '" << needle << "'";
         return e.what();

@@ -8,10 +8,10 @@
 #include <sstream>
 
 #include "surfgrow/core/error.hpp"
-#include "surfgrow/core/occupancy_grid.hpp"
-#include "surfgrow/core/sensor_origins.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/io/octomap_export.hpp"
+#include "surfgrow/robot/occupancy_grid.hpp"
+#include "surfgrow/robot/sensor_origins.hpp"
 #include "surfgrow/scanner/builtin_scenes.hpp"
 #include "surfgrow/scanner/fuse.hpp"
 #include "surfgrow/scanner/scan_simulator.hpp"

@@ -56,6 +56,60 @@ TEST(ResultsIo, JsonRoundTripKeepsSurfacesAndSummary) {
     }
 }
 
+// One reader for surfaces.json: the orientation and the workspace (viewpoint, crop) come back too,
+// so a subcommand can index exactly the grown points again; broken ones are refused by name.
+TEST(ResultsIo, JsonRoundTripKeepsOrientationAndWorkspace) {
+    GrowerConfig cfg;
+    cfg.viewpoint = Vec3d(0.1, 0.2, 1.5);
+    cfg.crop.radius = 2.5;
+    cfg.crop.center = Vec3d(0.1, 0.05, 0.05);
+    Aabb box;
+    box.add(Vec3d(-1, -1, -1));
+    box.add(Vec3d(1, 1, 0.5));
+    cfg.crop.box = box;
+    const GrowResult r = small_result(cfg);
+    ASSERT_EQ(r.stats.orientation, OrientationSource::kViewpoint);
+    test::TempDir dir;
+    write_atomically(dir / "surfaces.json",
+                     [&](std::ostream& o) { write_result_json(o, r, cfg, {}); });
+    const StoredResult back = read_result_json(dir / "surfaces.json");
+    EXPECT_EQ(back.stats.orientation, OrientationSource::kViewpoint);
+    EXPECT_EQ(back.config.viewpoint, cfg.viewpoint);
+    EXPECT_EQ(back.config.crop.radius, cfg.crop.radius);
+    EXPECT_EQ(back.config.crop.center, cfg.crop.center);
+    ASSERT_TRUE(back.config.crop.box);
+    EXPECT_EQ(back.config.crop.box->min, box.min);
+    EXPECT_EQ(back.config.crop.box->max, box.max);
+
+    // Without a crop or viewpoint nothing is invented.
+    const GrowResult plain = small_result(GrowerConfig{});
+    write_atomically(dir / "plain.json",
+                     [&](std::ostream& o) { write_result_json(o, plain, GrowerConfig{}, {}); });
+    const StoredResult p = read_result_json(dir / "plain.json");
+    EXPECT_FALSE(p.config.viewpoint || p.config.crop.active());
+    EXPECT_EQ(p.stats.orientation, plain.stats.orientation);
+
+    // An unknown orientation or a crop centre that is not a point is malformed, naming the file.
+    std::string text = test::read_bytes(dir / "surfaces.json");
+    const std::string good = "\"orientation\": \"viewpoint\"";
+    for (const auto& [from, to] :
+         {std::pair<std::string, std::string>{good, "\"orientation\": \"sideways\""},
+          {"\"crop_center\": [", "\"crop_center\": [\"x\", "}}) {
+        std::string broken = text;
+        const auto at = broken.find(from);
+        ASSERT_NE(at, std::string::npos) << from << " in " << text.substr(0, 600);
+        broken.replace(at, from.size(), to);
+        test::write_bytes(dir / "broken.json", broken);
+        try {
+            (void)read_result_json(dir / "broken.json");
+            ADD_FAILURE() << "accepted " << to;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ErrorCode::kMalformedInput) << e.what();
+            EXPECT_NE(std::string(e.what()).find("broken.json"), std::string::npos) << e.what();
+        }
+    }
+}
+
 TEST(ResultsIo, SameResultSameBytes) {
     const GrowerConfig cfg;
     const GrowResult r = small_result(cfg);

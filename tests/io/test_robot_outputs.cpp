@@ -15,8 +15,8 @@
 #include "surfgrow/io/cloud_io.hpp"
 #include "surfgrow/io/collision_io.hpp"
 #include "surfgrow/io/occupancy_io.hpp"
+#include "surfgrow/io/result_outputs.hpp"
 #include "surfgrow/io/robot_file.hpp"
-#include "surfgrow/io/robot_outputs.hpp"
 
 namespace surfgrow {
 namespace {
@@ -239,23 +239,26 @@ TEST(CollisionFiles, SpheresAndReport) {
     EXPECT_EQ(Json::parse(no_spheres.str())["count"], 0);
 }
 
-TEST(RobotOutputs, StagesEveryFileTogether) {
+TEST(ResultOutputs, StagesEveryFileOfAPipelineResultTogether) {
     const PointCloud cloud = box_cloud();
-    GrowerConfig config;
-    config.viewpoint = Vec3d(0, 0, 0);
-    const GrowResult r = grow_surfaces(cloud, config);
+    PipelineConfig config;
+    config.grow.viewpoint = Vec3d(0, 0, 0);
+    const PipelineResult r = run_pipeline(cloud, config);
+    ASSERT_TRUE(r.planes && r.coverage && r.occupancy && r.collision);
     const test::TempDir dir;
     io::ResultMeta meta;
     io::OccupancySummary summary;
     {
         io::OutputTransaction tx(dir.path());
-        summary = io::add_occupancy_outputs(tx, cloud, r, config, meta);
-        io::add_collision_outputs(tx, r, meta);
+        summary = io::stage_result(tx, cloud, config, r, meta);
         tx.commit();
     }
-    for (const char* f :
-         {"occupancy.ply", "occupancy.json", "environment.bt", "collision_spheres.json"})
+    for (const char* f : {"surfaces.ply", "surfaces.json", "labels.txt", "planes.json",
+                          "planes.ply", "coverage.json", "coverage.csv", "occupancy.ply",
+                          "occupancy.json", "environment.bt", "collision_spheres.json"})
         EXPECT_TRUE(std::filesystem::is_regular_file(dir / f)) << f;
+    for (const char* f : {"surfaces.csv", "planes.obj"})
+        EXPECT_FALSE(std::filesystem::exists(dir / f)) << f;
     EXPECT_TRUE(summary.octomap_written);
     EXPECT_EQ(summary.octomap.occupied, summary.occupied_cubes);
     EXPECT_GT(summary.octomap.free, 0u);
@@ -264,7 +267,36 @@ TEST(RobotOutputs, StagesEveryFileTogether) {
     EXPECT_EQ(j["octomap"]["free_leaves"].get<std::uint64_t>(), summary.octomap.free);
     EXPECT_EQ(j["octomap"]["carving"], "viewpoint");
     EXPECT_EQ(Json::parse(test::read_bytes(dir / "collision_spheres.json"))["count"],
-              r.surfaces.size());
+              r.grow.surfaces.size());
+}
+
+TEST(ResultOutputs, FilesFollowTheChoiceAndTheStagesRun) {
+    const PointCloud cloud = box_cloud();
+    PipelineConfig config;
+    config.grow.viewpoint = Vec3d(0, 0, 0);
+    config.coverage.reset();
+    config.collision = false;
+    const PipelineResult r = run_pipeline(cloud, config);
+    EXPECT_TRUE(r.planes && r.occupancy);
+    EXPECT_FALSE(r.coverage || r.collision);
+    const test::TempDir dir;
+    io::ResultFiles files;
+    files.labels = false;
+    files.csv = true;
+    files.planes_obj = true;
+    files.octomap = false;
+    {
+        io::OutputTransaction tx(dir.path());
+        const io::OccupancySummary s = io::stage_result(tx, cloud, config, r, {}, files);
+        EXPECT_FALSE(s.octomap_written);
+        tx.commit();
+    }
+    for (const char* f : {"surfaces.ply", "surfaces.json", "surfaces.csv", "planes.json",
+                          "planes.ply", "planes.obj", "occupancy.ply", "occupancy.json"})
+        EXPECT_TRUE(std::filesystem::is_regular_file(dir / f)) << f;
+    for (const char* f :
+         {"labels.txt", "coverage.json", "environment.bt", "collision_spheres.json"})
+        EXPECT_FALSE(std::filesystem::exists(dir / f)) << f;
 }
 
 }  // namespace

@@ -8,11 +8,15 @@
 #include <limits>
 #include <string>
 
+#include "surfgrow/core/detail/key_sort.hpp"
 #include "surfgrow/core/error.hpp"
-#include "surfgrow/core/key_sort.hpp"
 #include "surfgrow/core/text.hpp"
 
 namespace surfgrow {
+
+using detail::BulkVector;
+using detail::radix_sort_pairs;
+using detail::reserve_bulk;
 
 namespace {
 

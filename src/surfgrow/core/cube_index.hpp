@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "surfgrow/core/bulk_allocator.hpp"
+#include "surfgrow/core/detail/bulk_allocator.hpp"
 #include "surfgrow/core/detail/simd_kernels.hpp"
 #include "surfgrow/core/geometry.hpp"
 
@@ -128,8 +128,8 @@ class CubeIndex {
     Eigen::Vector3i bits_ = Eigen::Vector3i::Zero();
     int shift_x_ = 0;
     int shift_y_ = 0;
-    BulkVector<float> x_, y_, z_;
-    BulkVector<std::uint32_t> original_;
+    detail::BulkVector<float> x_, y_, z_;
+    detail::BulkVector<std::uint32_t> original_;
     std::vector<std::uint64_t> cube_keys_;
     std::vector<std::uint32_t> cube_start_;  // cube_count() + 1 entries
 };

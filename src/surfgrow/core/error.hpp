@@ -1,4 +1,4 @@
-// Errors surfgrow reports to its users, each with its own process exit code.
+// Errors the library reports to its callers: a category and a message meant for the user.
 #pragma once
 
 #include <stdexcept>
@@ -6,7 +6,8 @@
 
 namespace surfgrow {
 
-/// Why an operation failed. The numeric value is the CLI's exit status (docs/exit-codes.md).
+/// Why an operation failed. The numbers are stable: the command line exits with them
+/// (README.md, "When something is wrong").
 enum class ErrorCode : int {
     kInternal = 1,  ///< a bug: an invariant did not hold
     kUsage = 2,     ///< unknown option, missing argument, bad syntax on the command line
@@ -17,9 +18,6 @@ enum class ErrorCode : int {
     kMalformedInput = 6,  ///< a file that claims a format but breaks it (bad header, truncated)
     kCannotWrite = 7,     ///< an output could not be written (permissions, disk full)
     kCloudTooLarge = 8,   ///< the cloud cannot be indexed at this mu (extent / mu too large)
-    /// A bound given to `surfgrow eval --require` does not hold (the evaluation is still written).
-    kRequirementFailed = 9,
-    kCollision = 10,  ///< `collide --fail-on-collision`: a robot link is too close
 };
 
 /// Exception carrying an ErrorCode and a message meant for the user. Messages name the file
@@ -28,7 +26,6 @@ class Error : public std::runtime_error {
   public:
     Error(ErrorCode code, const std::string& message) : std::runtime_error(message), code_(code) {}
     [[nodiscard]] ErrorCode code() const noexcept { return code_; }
-    [[nodiscard]] int exit_code() const noexcept { return static_cast<int>(code_); }
 
   private:
     ErrorCode code_;

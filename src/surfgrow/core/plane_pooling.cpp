@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include "surfgrow/core/bulk_allocator.hpp"
 #include "surfgrow/core/cube_index.hpp"
+#include "surfgrow/core/detail/bulk_allocator.hpp"
 
 namespace surfgrow {
+
+using detail::BulkVector;
+using detail::reserve_bulk;
 
 namespace {
 

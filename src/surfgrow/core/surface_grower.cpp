@@ -13,16 +13,22 @@
 #include <string>
 #include <string_view>
 
-#include "surfgrow/core/bulk_allocator.hpp"
 #include "surfgrow/core/cube_index.hpp"
+#include "surfgrow/core/detail/bulk_allocator.hpp"
+#include "surfgrow/core/detail/neighbourhood.hpp"
 #include "surfgrow/core/error.hpp"
-#include "surfgrow/core/neighbourhood.hpp"
+#include "surfgrow/core/grown_points.hpp"
 #include "surfgrow/core/noise_profile.hpp"
 #include "surfgrow/core/plane_pooling.hpp"
 #include "surfgrow/core/random.hpp"
+#include "surfgrow/core/stopwatch.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/core/threads.hpp"
 
 namespace surfgrow {
+
+// The growing's internals: the neighbourhood kernels and the bulk arrays.
+using namespace detail;
 
 void validate(const GrowerConfig& c) {
     auto fail = [](std::initializer_list<std::string_view> what) {
@@ -63,7 +69,6 @@ void validate(const GrowerConfig& c) {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxRangeBands = 1024;
 // The frame origin counts as the sensor if it lies within this many box diagonals of the points.
 constexpr double kFrameOriginReach = 10.0;
@@ -94,10 +99,6 @@ constexpr double kMedianAbsPerSigma = 0.6745;
 // A neighbourhood that fails eq. (2) is given a larger ball only while its thickness is that of
 // the noise (at most this many sigmas): noise-limited far surfaces, not edges or steps.
 constexpr double kGrowSigmas = 1.5;
-
-double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 /// A slab: all cubes whose x coordinate lies in one interval; a contiguous run of cubes.
 struct Slab {
@@ -767,49 +768,48 @@ SurfaceGrower::SurfaceGrower(GrowerConfig config) : config_(std::move(config)) {
     validate(config_);
 }
 
+GrowIndex SurfaceGrower::index(const PointCloud& cloud) const {
+    Stopwatch watch;
+    WorkspaceMask workspace = workspace_mask(cloud, config_);
+    GrowIndex g;
+    g.index =
+        CubeIndex(cloud.points, config_.mu, workspace.inside, resolve_threads(config_.threads));
+    g.points = cloud.points.size();
+    g.cropped_points = workspace.cropped;
+    g.seconds = watch.seconds();
+    return g;
+}
+
 GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
+    return grow(cloud, index(cloud));
+}
+
+GrowResult SurfaceGrower::grow(const PointCloud& cloud, const GrowIndex& grow_index) const {
     const GrowerConfig& cfg = config_;
-    const int threads = cfg.threads > 0 ? cfg.threads : std::max(1, omp_get_num_procs());
+    const int threads = resolve_threads(cfg.threads);
     GrowResult result;
     GrowStats& st = result.stats;
     const std::size_t n_in = cloud.points.size();
+    if (grow_index.points != n_in)
+        throw Error(ErrorCode::kInvalidParameter,
+                    cat({"the cube index was built over ", std::to_string(grow_index.points),
+                         " points, not over this cloud of ", std::to_string(n_in)}));
     st.points_in = n_in;
     auto report = [&](std::string_view stage, double f) {
         if (cfg.progress) cfg.progress(stage, f);
     };
 
-    // --- Stage 1: the cube index over valid points inside the crop.
-    auto t0 = Clock::now();
-    std::vector<std::uint8_t> include;
-    if (cfg.crop.active()) {
-        include.assign(n_in, 1);
-        const Vec3d center = cfg.crop.center   ? *cfg.crop.center
-                             : cfg.viewpoint   ? *cfg.viewpoint
-                             : cloud.viewpoint ? *cloud.viewpoint
-                                               : Vec3d(-cloud.offset);
-        const double r2 = cfg.crop.radius ? *cfg.crop.radius * *cfg.crop.radius : 0.0;
-        for (std::size_t i = 0; i < n_in; ++i) {
-            const Vec3f& pf = cloud.points[i];
-            if (!is_finite(pf)) continue;
-            const Vec3d p = pf.cast<double>();
-            const bool inside = (!cfg.crop.box || cfg.crop.box->contains(p)) &&
-                                (!cfg.crop.radius || (p - center).squaredNorm() <= r2);
-            if (!inside) {
-                include[i] = 0;
-                ++st.cropped_points;
-            }
-        }
-    }
-    const CubeIndex index(cloud.points, cfg.mu, include, threads);
-    release(include);
+    // --- Stage 1: the cube index over valid points inside the crop (index()).
+    const CubeIndex& index = grow_index.index;
     const std::size_t n = index.size();
+    st.cropped_points = grow_index.cropped_points;
     st.valid_points = n;
     st.invalid_points = n_in - n - st.cropped_points;
-    st.seconds.index = seconds_since(t0);
+    st.seconds.index = grow_index.seconds;
     report("index", 1.0);
+    Stopwatch stage;
 
     // --- Stage 2: growing, slab by slab, even colour then odd.
-    t0 = Clock::now();
     const int reach = static_cast<int>(std::ceil(cfg.max_radius() / index.cube_size()));
     const std::size_t target = std::clamp<std::size_t>(n / 256, 4096, 65536);
     const std::vector<Slab> slabs = partition_slabs(index, 2 * reach, target);
@@ -964,11 +964,10 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         st.released_by_refinement = released;
     }
     release(all);
-    st.seconds.grow = seconds_since(t0);
+    st.seconds.grow = stage.lap();
     for (const std::int32_t l : labels) st.registered_grown += l >= 0 ? 1 : 0;
 
     // --- Stage 3: attach leftovers to the best-fitting neighbouring surface.
-    t0 = Clock::now();
     if (cfg.attach_leftovers && surface_count > 0) {
         std::vector<std::vector<std::pair<std::uint32_t, std::int32_t>>> attach(slabs.size());
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
@@ -979,11 +978,10 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         for (const auto& list : attach)
             for (const auto& [i, sid] : list) labels[i] = sid;
     }
-    st.seconds.attach = seconds_since(t0);
+    st.seconds.attach = stage.lap();
     report("attach", 1.0);
 
     // --- Stage 4: member statistics, orientation, labels in input order, range bands.
-    t0 = Clock::now();
     const auto orig = index.original_indices();
     release(distance);
     st.orientation = orient.source;
@@ -1132,7 +1130,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
         }
         st.surfaces = kept;
     }
-    st.seconds.finish = seconds_since(t0);
+    st.seconds.finish = stage.lap();
     report("finish", 1.0);
     return result;
 }

@@ -1,11 +1,24 @@
 // Surface growing (paper section 4.2): random home points, PCA, registration.
 #pragma once
 
+#include <cstdint>
+
+#include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/grow_result.hpp"
 #include "surfgrow/core/grower_config.hpp"
 #include "surfgrow/core/point_cloud.hpp"
 
 namespace surfgrow {
+
+/// The cube index growing works on (the paper's stage 1) and what building it found. Stages after
+/// growing that index the same points (the occupancy grid) can reuse it instead of building their
+/// own.
+struct GrowIndex {
+    CubeIndex index;           ///< the points of grown_point_mask(cloud, config), cube side mu
+    std::uint64_t points = 0;  ///< points in the cloud it was built from
+    std::uint64_t cropped_points = 0;  ///< finite points outside the workspace crop
+    double seconds = 0.0;              ///< time to build it
+};
 
 /// Grows planar surface patches over a point cloud.
 ///
@@ -27,6 +40,13 @@ class SurfaceGrower {
 
     /// Grows surfaces over `cloud`. An empty cloud (or one with no valid point) gives no surfaces.
     [[nodiscard]] GrowResult grow(const PointCloud& cloud) const;
+
+    /// The cube index of `cloud` for this configuration.
+    [[nodiscard]] GrowIndex index(const PointCloud& cloud) const;
+    /// Grows surfaces over `cloud` through `index`, which index(cloud) built from the same cloud
+    /// with the same configuration; same result as grow(cloud). Throws Error(kInvalidParameter)
+    /// when the index is of a cloud of another size.
+    [[nodiscard]] GrowResult grow(const PointCloud& cloud, const GrowIndex& index) const;
 
   private:
     GrowerConfig config_;

@@ -4,10 +4,10 @@
 #include <span>
 #include <vector>
 
-#include "surfgrow/core/bound_planes.hpp"
 #include "surfgrow/core/grow_result.hpp"
 #include "surfgrow/eval/evaluation.hpp"
 #include "surfgrow/eval/face_detection.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
 
 namespace surfgrow::eval {
 

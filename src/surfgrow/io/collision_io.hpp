@@ -5,9 +5,9 @@
 #include <span>
 #include <string>
 
-#include "surfgrow/core/collision_spheres.hpp"
-#include "surfgrow/core/robot_model.hpp"
 #include "surfgrow/io/results_io.hpp"
+#include "surfgrow/robot/collision_spheres.hpp"
+#include "surfgrow/robot/robot_model.hpp"
 
 namespace surfgrow::io {
 

@@ -5,8 +5,8 @@
 #include <ostream>
 #include <vector>
 
-#include "surfgrow/core/coverage.hpp"
 #include "surfgrow/io/results_io.hpp"
+#include "surfgrow/robot/coverage.hpp"
 
 namespace surfgrow::io {
 

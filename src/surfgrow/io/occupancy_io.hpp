@@ -3,9 +3,9 @@
 
 #include <ostream>
 
-#include "surfgrow/core/occupancy_grid.hpp"
 #include "surfgrow/io/octomap_export.hpp"
 #include "surfgrow/io/results_io.hpp"
+#include "surfgrow/robot/occupancy_grid.hpp"
 
 namespace surfgrow::io {
 

@@ -5,9 +5,9 @@
 #include <ostream>
 #include <span>
 
-#include "surfgrow/core/occupancy_grid.hpp"
 #include "surfgrow/core/point_cloud.hpp"
-#include "surfgrow/core/sensor_origins.hpp"
+#include "surfgrow/robot/occupancy_grid.hpp"
+#include "surfgrow/robot/sensor_origins.hpp"
 
 namespace surfgrow::io {
 

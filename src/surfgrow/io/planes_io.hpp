@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <ostream>
 
-#include "surfgrow/core/bound_planes.hpp"
-#include "surfgrow/core/plane_mesh.hpp"
 #include "surfgrow/io/results_io.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
+#include "surfgrow/planes/plane_mesh.hpp"
 
 namespace surfgrow::io {
 

@@ -303,6 +303,22 @@ StoredResult read_result_json(const std::filesystem::path& file) {
         r.config.plane_tolerance = p.at("plane_tolerance").get<double>();
         r.config.adaptive_factor = p.at("mu_max").get<double>() / r.config.mu;
         r.config.seed = p.at("seed").get<std::uint64_t>();
+        // The workspace: the occupancy grid needs it to index exactly the grown points again.
+        auto finite_vec = [&](const nlohmann::json& v, std::string_view what) {
+            const Vec3d x = vec_of(v);
+            if (!x.allFinite()) malformed(file, cat({"parameters.", what, " is not finite"}));
+            return x;
+        };
+        if (p.contains("viewpoint")) r.config.viewpoint = finite_vec(p["viewpoint"], "viewpoint");
+        if (p.contains("crop_box")) {
+            Aabb box;
+            box.min = finite_vec(p["crop_box"].at("min"), "crop_box");
+            box.max = finite_vec(p["crop_box"].at("max"), "crop_box");
+            r.config.crop.box = box;
+        }
+        if (p.contains("crop_radius")) r.config.crop.radius = p["crop_radius"].get<double>();
+        if (p.contains("crop_center"))
+            r.config.crop.center = finite_vec(p["crop_center"], "crop_center");
         const auto& s = j.at("summary");
         r.stats.points_in = s.at("points_in").get<std::uint64_t>();
         r.stats.valid_points = s.at("valid_points").get<std::uint64_t>();
@@ -312,6 +328,15 @@ StoredResult read_result_json(const std::filesystem::path& file) {
         r.stats.registered = s.at("registered").get<std::uint64_t>();
         r.stats.registered_grown = s.at("registered_grown").get<std::uint64_t>();
         r.stats.noise_points = s.at("noise_points").get<std::uint64_t>();
+        const std::string orientation = s.at("orientation").get<std::string>();
+        bool known = false;
+        for (OrientationSource o : {OrientationSource::kScanOrigins, OrientationSource::kViewpoint,
+                                    OrientationSource::kFrameOrigin, OrientationSource::kUp})
+            if (orientation == orientation_name(o)) {
+                r.stats.orientation = o;
+                known = true;
+            }
+        if (!known) malformed(file, cat({"summary.orientation is unknown ('", orientation, "')"}));
         for (const auto& js : j.at("surfaces")) {
             Surface surf;
             surf.normal = vec_of(js.at("normal"));

@@ -42,8 +42,9 @@ void write_labels_txt(std::ostream& out, std::span<const std::int32_t> labels);
 /// A result read back from a folder written by `surfgrow grow`.
 struct StoredResult {
     std::vector<Surface> surfaces;  ///< positions relative to meta.offset, as when grown
-    GrowStats stats;                ///< without timings
-    GrowerConfig config;            ///< the parameters used (lengths in the cloud's units)
+    GrowStats stats;                ///< without timings; orientation from summary.orientation
+    /// The parameters used (lengths in the cloud's units), workspace (viewpoint, crop) included.
+    GrowerConfig config;
     ResultMeta meta;
 };
 

@@ -6,7 +6,7 @@
 #include <string_view>
 
 #include "surfgrow/core/geometry.hpp"
-#include "surfgrow/core/robot_model.hpp"
+#include "surfgrow/robot/robot_model.hpp"
 
 namespace surfgrow::io {
 

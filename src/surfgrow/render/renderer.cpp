@@ -10,6 +10,7 @@
 
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/core/threads.hpp"
 #include "surfgrow/render/overlay.hpp"
 #include "surfgrow/render/raster.hpp"
 #include "surfgrow/render/tiles.hpp"
@@ -226,7 +227,7 @@ Image render_scene(const Scene& scene, const RenderOptions& options) {
     const int ss = options.supersample;
     const int apron = (ss + 1) / 2;
     const TileGrid grid(options.width, options.height, kTile);
-    const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+    const int threads = resolve_threads(options.threads);
     const double pad = 1.0 + double(apron) / ss;
     const double point_radius = options.point_size / 2;
     const double half_line = options.line_width / 2;

@@ -1,0 +1,73 @@
+#include "surfgrow/io/result_folder.hpp"
+
+#include <utility>
+
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/text.hpp"
+#include "surfgrow/io/cloud_io.hpp"
+
+namespace surfgrow::io {
+
+namespace fs = std::filesystem;
+
+ResultFolder read_result_folder(const fs::path& dir) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+        throw Error(
+            ErrorCode::kCannotOpen,
+            cat({dir.string(), ": no such folder (give the folder surfgrow grow -o wrote)"}));
+    const fs::path file = dir / "surfaces.json";
+    if (!fs::is_regular_file(file, ec))
+        throw Error(ErrorCode::kCannotOpen,
+                    cat({dir.string(), ": no surfaces.json here (is this a surfgrow result?)"}));
+    ResultFolder folder;
+    folder.dir = dir;
+    folder.result = read_result_json(file);
+    return folder;
+}
+
+GrownCloud read_grown_cloud(const fs::path& cloud_file, const ResultFolder& folder) {
+    GrownCloud g;
+    g.cloud = read_cloud(cloud_file);
+    // Bring the points into the result's frame if the file was read with another offset.
+    const Vec3d shift = g.cloud.offset - folder.result.meta.offset;
+    if (shift != Vec3d::Zero()) {
+        const Vec3f s = shift.cast<float>();
+        for (Vec3f& p : g.cloud.points) p += s;
+        g.cloud.offset = folder.result.meta.offset;
+    }
+    const fs::path labels = folder.dir / "labels.txt";
+    std::error_code ec;
+    if (!fs::exists(labels, ec)) return g;
+    g.labels = read_labels_txt(labels);
+    if (g.labels.size() != g.cloud.size())
+        throw Error(ErrorCode::kMalformedInput,
+                    cat({labels.string(), " has ", std::to_string(g.labels.size()), " labels but ",
+                         cloud_file.string(), " has ", std::to_string(g.cloud.size()),
+                         " points: is this the cloud that was grown?"}));
+    const auto surfaces = static_cast<std::int64_t>(folder.result.surfaces.size());
+    for (std::size_t i = 0; i < g.labels.size(); ++i)
+        if (g.labels[i] >= surfaces)
+            throw Error(ErrorCode::kMalformedInput,
+                        cat({labels.string(), ": line ", std::to_string(i + 1), " names surface ",
+                             std::to_string(g.labels[i]), " but the result has ",
+                             std::to_string(surfaces), " surfaces"}));
+    return g;
+}
+
+StoredResult read_grown_result(const fs::path& dir) {
+    return read_result_folder(dir).result;
+}
+
+GrownFolder read_grown_folder(const fs::path& dir, const fs::path& cloud_file) {
+    ResultFolder folder = read_result_folder(dir);
+    GrownCloud g = read_grown_cloud(cloud_file, folder);
+    std::error_code ec;
+    if (!fs::exists(dir / "labels.txt", ec))
+        throw Error(ErrorCode::kCannotOpen,
+                    cat({(dir / "labels.txt").string(),
+                         " is missing (was the result grown with --no-labels?)"}));
+    return GrownFolder{std::move(folder.result), std::move(g.cloud), std::move(g.labels)};
+}
+
+}  // namespace surfgrow::io

@@ -1,0 +1,72 @@
+// The files of a result folder, staged from a result in memory into one output transaction:
+// `surfgrow grow` stages a whole pipeline result, the subcommands the parts they redo.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "surfgrow/core/grow_result.hpp"
+#include "surfgrow/core/grower_config.hpp"
+#include "surfgrow/core/point_cloud.hpp"
+#include "surfgrow/io/atomic_output.hpp"
+#include "surfgrow/io/octomap_export.hpp"
+#include "surfgrow/io/results_io.hpp"
+#include "surfgrow/pipeline/pipeline.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
+#include "surfgrow/robot/collision_spheres.hpp"
+#include "surfgrow/robot/coverage.hpp"
+#include "surfgrow/robot/occupancy_grid.hpp"
+
+namespace surfgrow::io {
+
+/// Which files to write besides surfaces.ply and surfaces.json. The robot outputs' files are
+/// written when the result holds them.
+struct ResultFiles {
+    bool labels = true;       ///< labels.txt
+    bool csv = false;         ///< surfaces.csv
+    bool planes_obj = false;  ///< planes.obj besides planes.json and planes.ply
+    bool occupancy = true;    ///< occupancy.ply and occupancy.json
+    bool octomap = true;      ///< environment.bt (free space carved from the scan origins)
+};
+
+struct OccupancyOutputs {
+    bool ply = true;      ///< occupancy.ply
+    bool octomap = true;  ///< environment.bt
+    bool json = true;     ///< occupancy.json
+};
+
+struct OccupancySummary {
+    std::uint64_t occupied_cubes = 0;
+    std::uint64_t registered_points = 0;
+    bool octomap_written = false;
+    OctomapSummary octomap;
+};
+
+/// Stages the files of `result`, computed over `cloud` by a Pipeline with `config`: surfaces.ply,
+/// surfaces.json and, as `files` and the result have them, labels.txt, surfaces.csv, planes.*,
+/// coverage.*, occupancy.*, environment.bt, collision_spheres.json. Returns what the occupancy
+/// outputs found (zero when there is no grid).
+OccupancySummary stage_result(OutputTransaction& tx, const PointCloud& cloud,
+                              const PipelineConfig& config, const PipelineResult& result,
+                              const ResultMeta& meta, const ResultFiles& files = {});
+
+/// Stages planes.json, planes.ply and, with `obj`, planes.obj.
+void stage_planes(OutputTransaction& tx, const BoundPlanes& planes, const ResultMeta& meta,
+                  bool obj);
+
+/// Stages coverage.json and coverage.csv.
+void stage_coverage(OutputTransaction& tx, const CoveragePlan& plan, const ResultMeta& meta);
+
+/// Stages occupancy.ply, environment.bt and occupancy.json for `grid`, the occupancy grid of
+/// (cloud, config) (see occupancy_io.hpp and octomap_export.hpp). The OctoMap's rays are cast to
+/// the grown points (finite, inside the crop) from sensor_origins(cloud, config). Throws what
+/// write_octomap_bt() throws.
+OccupancySummary stage_occupancy(OutputTransaction& tx, const OccupancyGrid& grid,
+                                 const PointCloud& cloud, const GrowerConfig& config,
+                                 const ResultMeta& meta, const OccupancyOutputs& which = {});
+
+/// Stages collision_spheres.json.
+void stage_collision(OutputTransaction& tx, const CollisionSpheres& spheres,
+                     const ResultMeta& meta);
+
+}  // namespace surfgrow::io

@@ -1,0 +1,61 @@
+#include "surfgrow/pipeline/pipeline.hpp"
+
+#include "surfgrow/core/stopwatch.hpp"
+
+namespace surfgrow {
+
+Pipeline::Pipeline(PipelineConfig config) : config_(std::move(config)) {
+    validate(config_.grow);
+    if (config_.planes) {
+        config_.planes->mu = config_.grow.mu;
+        config_.planes->threads = config_.grow.threads;
+        validate(*config_.planes);
+    }
+    if (config_.coverage) {
+        config_.coverage->threads = config_.grow.threads;
+        validate(*config_.coverage);
+    }
+}
+
+PipelineResult Pipeline::run(const PointCloud& cloud) const {
+    const PipelineConfig& c = config_;
+    const auto report = [&](std::string_view stage) {
+        if (c.grow.progress) c.grow.progress(stage, 1.0);
+    };
+    PipelineResult r;
+    const SurfaceGrower grower(c.grow);
+    // The index is kept for the occupancy grid, which lies on exactly the grower's cubes.
+    std::optional<GrowIndex> index = grower.index(cloud);
+    r.grow = grower.grow(cloud, *index);
+    if (!c.occupancy) index.reset();
+
+    if (c.planes) {
+        Stopwatch watch;
+        r.planes = compute_bound_planes(cloud, r.grow.surfaces, r.grow.labels, *c.planes);
+        r.seconds.planes = watch.seconds();
+        report("planes");
+        if (c.coverage) {
+            watch.lap();
+            r.coverage = plan_coverage(*r.planes, r.grow.surfaces, *c.coverage);
+            r.seconds.coverage = watch.seconds();
+            report("coverage");
+        }
+    }
+    if (c.occupancy) {
+        Stopwatch watch;
+        r.occupancy = OccupancyGrid(index->index, r.grow.labels, c.grow.mu);
+        index.reset();
+        r.seconds.occupancy = watch.seconds();
+        report("occupancy");
+    }
+    if (c.collision) {
+        Stopwatch watch;
+        r.collision = CollisionSpheres::from_surfaces(r.grow.surfaces);
+        r.seconds.collision = watch.seconds();
+        report("collision");
+    }
+    report("done");
+    return r;
+}
+
+}  // namespace surfgrow

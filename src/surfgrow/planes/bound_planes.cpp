@@ -1,0 +1,581 @@
+#include "surfgrow/planes/bound_planes.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <initializer_list>
+#include <numeric>
+
+#include "surfgrow/core/cube_index.hpp"
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/symmetric_eigen.hpp"
+#include "surfgrow/core/text.hpp"
+#include "surfgrow/core/threads.hpp"
+#include "surfgrow/planes/boundary_polygon.hpp"
+#include "surfgrow/planes/patch_adjacency.hpp"
+#include "surfgrow/planes/plane_raster.hpp"
+
+namespace surfgrow {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+// A face's plane is refitted on the member points within this many robust sigmas (1.4826 x the
+// median distance) of the previous fit, at most this many times.
+constexpr double kInlierSigmas = 3.0;
+constexpr int kRefitPasses = 5;
+
+[[noreturn]] void bad(std::initializer_list<std::string_view> what) {
+    throw Error(ErrorCode::kInvalidParameter, cat(what));
+}
+
+// Count, mean and scatter matrix about the mean: merging two sets is exact and stable (Chan et
+// al.), so a region's plane is the least-squares fit of the union of its patches' points.
+struct CentredMoments {
+    double n = 0;
+    Vec3d mean = Vec3d::Zero();
+    Mat3d scatter = Mat3d::Zero();
+
+    void merge(const CentredMoments& o) {
+        if (o.n == 0) return;
+        const double total = n + o.n;
+        const Vec3d delta = o.mean - mean;
+        scatter += o.scatter + (n * o.n / total) * delta * delta.transpose();
+        mean += delta * (o.n / total);
+        n = total;
+    }
+};
+
+struct Fit {
+    Vec3d normal = Vec3d::UnitZ();
+    Vec3d eigenvalues = Vec3d::Zero();
+    bool degenerate = true;
+};
+
+// Least-squares plane of the moments; degenerate when the points are (nearly) collinear.
+Fit fit_moments(const CentredMoments& m) {
+    Fit f;
+    if (m.n < 3) return f;
+    const Mat3d cov = 0.5 * (m.scatter + m.scatter.transpose()) / m.n;
+    const SymmetricEigen3 e = symmetric_eigen(cov);
+    f.normal = e.smallest_vector;
+    f.eigenvalues = e.values.cwiseMax(0.0);
+    f.degenerate = !(f.eigenvalues[1] > 1e-12 * f.eigenvalues[2] && f.eigenvalues[1] > 0);
+    return f;
+}
+
+double median_of(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    const auto mid = v.begin() + static_cast<long>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return *mid;
+}
+
+// The plane of the points within k robust sigma of (normal, centroid), as moments: points of
+// a neighbouring face that some patch near the edge registered within its tolerance tilt a
+// least-squares fit of all members; the inliers' fit does without them. Sigma is 1.4826 x the
+// median distance, taken over at most kSigmaSample points evenly spread through the list (a few
+// per cent of noise in a threshold at 3 sigma, for a fraction of the cost on big faces).
+constexpr std::size_t kSigmaSample = 8192;
+
+CentredMoments inlier_moments(std::span<const Vec3d> points, const Vec3d& normal,
+                              const Vec3d& centroid, double k, double floor_scale,
+                              std::vector<double>& scratch) {
+    scratch.clear();
+    const std::size_t stride = points.size() / kSigmaSample + 1;
+    for (std::size_t i = 0; i < points.size(); i += stride)
+        scratch.push_back(std::abs(normal.dot(points[i] - centroid)));
+    const auto mid = scratch.begin() + static_cast<std::ptrdiff_t>(scratch.size() / 2);
+    std::nth_element(scratch.begin(), mid, scratch.end());
+    const double sigma = scratch.empty() ? 0.0 : 1.4826 * *mid;
+    // Points exactly on a plane still scatter by the float coordinates' rounding: keep them.
+    const double limit = std::max(k * sigma, 1e-6 * floor_scale);
+    double n = 0, sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+    for (const Vec3d& p : points) {
+        const double dx = p.x() - centroid.x(), dy = p.y() - centroid.y(),
+                     dz = p.z() - centroid.z();
+        if (std::abs(normal.x() * dx + normal.y() * dy + normal.z() * dz) > limit) continue;
+        n += 1;
+        sx += dx;
+        sy += dy;
+        sz += dz;
+        sxx += dx * dx;
+        sxy += dx * dy;
+        sxz += dx * dz;
+        syy += dy * dy;
+        syz += dy * dz;
+        szz += dz * dz;
+    }
+    CentredMoments m;
+    if (n < 3) return m;
+    const Vec3d sum(sx, sy, sz);
+    Mat3d sq;
+    sq << sxx, sxy, sxz, sxy, syy, syz, sxz, syz, szz;
+    m.n = n;
+    m.mean = centroid + sum / n;
+    m.scatter = sq - sum * sum.transpose() / n;
+    return m;
+}
+
+// Member points of each surface, input order: CSR offsets and indices.
+struct Members {
+    std::vector<std::uint32_t> offset;  // surfaces + 1
+    std::vector<std::uint32_t> index;
+    [[nodiscard]] std::span<const std::uint32_t> of(std::size_t s) const {
+        return {index.data() + offset[s], offset[s + 1] - offset[s]};
+    }
+};
+
+Members collect_members(std::span<const Vec3f> points, std::span<const std::int32_t> labels,
+                        std::size_t surfaces) {
+    Members m;
+    m.offset.assign(surfaces + 1, 0);
+    for (std::size_t i = 0; i < labels.size(); ++i)
+        if (labels[i] >= 0 && is_finite(points[i]))
+            ++m.offset[static_cast<std::size_t>(labels[i]) + 1];
+    for (std::size_t s = 0; s < surfaces; ++s) m.offset[s + 1] += m.offset[s];
+    m.index.resize(m.offset[surfaces]);
+    std::vector<std::uint32_t> fill(m.offset.begin(), m.offset.end() - 1);
+    for (std::size_t i = 0; i < labels.size(); ++i)
+        if (labels[i] >= 0 && is_finite(points[i]))
+            m.index[fill[static_cast<std::size_t>(labels[i])]++] = static_cast<std::uint32_t>(i);
+    return m;
+}
+
+// A region of at most kFragmentPatches patches (a patch on an edge, a noisy patch whose normal
+// missed the angle test) whose member points lie, at least kFragmentFit of them, as close to an
+// adjacent larger region's plane as that region's own points do (within the offset, or twice
+// the region's RMS thickness if larger) joins that region: its points belong to the face,
+// and left alone it would punch a hole in the face's boundary. The target planes are fitted
+// before any fragment moves, so the outcome does not depend on the order.
+constexpr std::size_t kFragmentPatches = 2;
+constexpr double kFragmentFit = 0.8;
+
+void absorb_fragments(std::span<const Vec3f> points, const Members& members,
+                      const std::vector<std::uint32_t>& adj_off,
+                      const std::vector<std::uint32_t>& adj, const BoundPlaneConfig& cfg,
+                      std::vector<std::int32_t>& region,
+                      std::vector<std::vector<std::uint32_t>>& region_members,
+                      std::vector<CentredMoments>& region_moments,
+                      const std::vector<CentredMoments>& moments) {
+    const std::size_t nr = region_members.size();
+    std::vector<Plane> planes(nr);
+    std::vector<double> tolerance(nr);
+    for (std::size_t r = 0; r < nr; ++r) {
+        const CentredMoments& m = region_moments[r];
+        const Fit f = fit_moments(m);
+        planes[r] = Plane::through(m.mean, f.normal);
+        tolerance[r] = std::max(cfg.max_offset, 2 * std::sqrt(f.eigenvalues[0]));
+    }
+    std::vector<std::int32_t> target(nr, -1);
+    std::vector<std::int32_t> candidates;
+    for (std::size_t r = 0; r < nr; ++r) {
+        if (region_members[r].size() > kFragmentPatches) continue;
+        candidates.clear();
+        for (const std::uint32_t p : region_members[r])
+            for (std::uint32_t k = adj_off[p]; k < adj_off[p + 1]; ++k) {
+                const std::int32_t q = region[adj[k]];
+                if (region_members[static_cast<std::size_t>(q)].size() > kFragmentPatches)
+                    candidates.push_back(q);
+            }
+        std::sort(candidates.begin(), candidates.end());
+        candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+        double best = kFragmentFit;
+        for (const std::int32_t q : candidates) {
+            const Plane& plane = planes[static_cast<std::size_t>(q)];
+            std::size_t fit = 0, total = 0;
+            for (const std::uint32_t p : region_members[r])
+                for (const std::uint32_t i : members.of(p)) {
+                    ++total;
+                    fit += std::abs(plane.signed_distance(points[i].cast<double>())) <=
+                           tolerance[static_cast<std::size_t>(q)];
+                }
+            const double share = total ? double(fit) / double(total) : 0.0;
+            if (share >= best) {  // ties: the earlier (larger-seeded) region
+                if (share > best || target[r] < 0) target[r] = q;
+                best = share;
+            }
+        }
+    }
+    for (std::size_t r = 0; r < nr; ++r) {
+        if (target[r] < 0) continue;
+        const auto q = static_cast<std::size_t>(target[r]);
+        for (const std::uint32_t p : region_members[r]) {
+            region[p] = target[r];
+            region_members[q].push_back(p);
+            region_moments[q].merge(moments[p]);
+        }
+        region_members[r].clear();
+        region_moments[r] = CentredMoments{};
+    }
+}
+
+// Coplanar regions whose patches come within max_gap of each other (a face seen in bands between
+// occlusion shadows, a plate behind a stiffener) are one face: merged when both planes and their
+// pooled fit agree in angle, and each centroid lies within the offset of the pooled plane. Pairs
+// are tried in region order; pooled moments keep chains of merges from drifting.
+void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8_t>& used,
+                 const std::vector<std::int32_t>& region, const BoundPlaneConfig& cfg,
+                 std::vector<std::vector<std::uint32_t>>& region_members,
+                 std::vector<CentredMoments>& region_moments, int threads) {
+    const std::size_t nr = region_members.size();
+    if (cfg.max_gap <= 0 || nr < 2) return;
+    std::vector<Vec3f> homes(surfaces.size());
+    double max_radius = 0;
+    for (std::size_t s = 0; s < surfaces.size(); ++s) {
+        homes[s] = surfaces[s].home.cast<float>();
+        if (used[s]) max_radius = std::max(max_radius, surfaces[s].radius);
+    }
+    // Candidate region pairs, in parallel over the patches (sorted and unique in the end, so the
+    // same for any thread count).
+    const CubeIndex index(homes, cfg.max_gap + 2 * max_radius, used, 1);
+    const auto original = index.original_indices();
+    // Regions in the index's order, -1 for regions absorbed as fragments: most homes within reach
+    // are of the patch's own region, and this skips them before any distance.
+    constexpr std::uint32_t kNone = ~std::uint32_t{0};
+    std::vector<std::uint32_t> region_at(index.size());
+    for (std::size_t j = 0; j < index.size(); ++j) {
+        const auto r = static_cast<std::uint32_t>(region[original[j]]);
+        region_at[j] = region_members[r].empty() ? kNone : r;
+    }
+    std::vector<std::vector<std::uint64_t>> found(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+    {
+        std::vector<std::uint64_t>& out = found[static_cast<std::size_t>(omp_get_thread_num())];
+#pragma omp for schedule(dynamic, 256)
+        for (std::size_t p = 0; p < surfaces.size(); ++p) {
+            if (!used[p]) continue;
+            const Surface& a = surfaces[p];
+            const auto ra = static_cast<std::uint32_t>(region[p]);
+            if (region_members[ra].empty()) continue;
+            for_each_home_near(
+                index, a.home, cfg.max_gap + a.radius + max_radius,
+                [&](std::uint32_t j) { return region_at[j] != ra && region_at[j] != kNone; },
+                [&](std::uint32_t j) {
+                    const Surface& b = surfaces[original[j]];
+                    if ((b.home - a.home).norm() - a.radius - b.radius > cfg.max_gap) return;
+                    const std::uint64_t key = pair_key(ra, region_at[j]);
+                    if (out.empty() || out.back() != key) out.push_back(key);
+                });
+        }
+    }
+    const std::vector<std::uint64_t> pairs = merged_unique({&found});
+    std::vector<std::uint32_t> parent(nr);
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto root = [&](std::uint32_t r) {
+        while (parent[r] != r) r = parent[r] = parent[parent[r]];
+        return r;
+    };
+    const double cos_max = std::cos(cfg.max_angle_deg * kDeg);
+    auto parallel = [&](const Vec3d& x, const Vec3d& y) { return std::abs(x.dot(y)) >= cos_max; };
+    for (const std::uint64_t key : pairs) {
+        const std::uint32_t a = root(static_cast<std::uint32_t>(key >> 32));
+        const std::uint32_t b = root(static_cast<std::uint32_t>(key & 0xffffffffu));
+        if (a == b) continue;
+        const CentredMoments &ma = region_moments[a], &mb = region_moments[b];
+        CentredMoments pooled = ma;
+        pooled.merge(mb);
+        const Fit fa = fit_moments(ma), fb = fit_moments(mb), fp = fit_moments(pooled);
+        if (fa.degenerate || fb.degenerate || fp.degenerate) continue;
+        if (!parallel(fa.normal, fb.normal) || !parallel(fa.normal, fp.normal) ||
+            !parallel(fb.normal, fp.normal))
+            continue;
+        if (std::abs(fp.normal.dot(ma.mean - pooled.mean)) > cfg.max_offset ||
+            std::abs(fp.normal.dot(mb.mean - pooled.mean)) > cfg.max_offset)
+            continue;
+        const std::uint32_t keep = std::min(a, b), gone = std::max(a, b);
+        parent[gone] = keep;
+        region_moments[keep] = pooled;
+        region_moments[gone] = CentredMoments{};
+        auto& list = region_members[keep];
+        list.insert(list.end(), region_members[gone].begin(), region_members[gone].end());
+        region_members[gone].clear();
+    }
+}
+
+// The in-plane axis of largest spread, with a deterministic sign.
+Vec3d principal_axis(const Vec3d& n, const Mat3d& scatter) {
+    const Vec3d e1 = n.unitOrthogonal();
+    const Vec3d e2 = n.cross(e1);
+    const double a = e1.dot(scatter * e1), b = e2.dot(scatter * e2), c = e1.dot(scatter * e2);
+    const double phi = 0.5 * std::atan2(2 * c, a - b);
+    Vec3d u = (std::cos(phi) * e1 + std::sin(phi) * e2).normalized();
+    Eigen::Index k = 0;
+    u.cwiseAbs().maxCoeff(&k);
+    return u[k] < 0 ? Vec3d(-u) : u;
+}
+
+}  // namespace
+
+void validate(const BoundPlaneConfig& c) {
+    if (!(c.mu > 0) || !std::isfinite(c.mu)) bad({"mu must be positive, got ", num(c.mu)});
+    if (!(c.max_angle_deg > 0 && c.max_angle_deg < 90))
+        bad({"plane angle must be between 0 and 90 degrees, got ", num(c.max_angle_deg)});
+    const std::pair<const char*, double> lengths[] = {{"plane offset", c.max_offset},
+                                                      {"adjacency distance", c.adjacency},
+                                                      {"boundary resolution", c.resolution},
+                                                      {"closing radius", c.closing_radius},
+                                                      {"simplify tolerance", c.simplify_tolerance}};
+    for (const auto& [name, v] : lengths)
+        if (!(v >= 0) || !std::isfinite(v)) bad({name, " must be >= 0 (0: default), got ", num(v)});
+    if (!std::isfinite(c.max_gap)) bad({"max gap must be finite, got ", num(c.max_gap)});
+    if (c.resolution > 0 && c.resolution < c.mu * 1e-3)
+        bad({"boundary resolution ", num(c.resolution), " is below mu / 1000"});
+    if (c.threads < 0) bad({"threads must be >= 0, got ", std::to_string(c.threads)});
+}
+
+std::vector<std::int32_t> plane_labels(const BoundPlanes& planes,
+                                       std::span<const std::int32_t> labels) {
+    std::vector<std::int32_t> out(labels.size(), -1);
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        const std::int32_t l = labels[i];
+        if (l >= 0 && static_cast<std::size_t>(l) < planes.plane_of_patch.size())
+            out[i] = planes.plane_of_patch[static_cast<std::size_t>(l)];
+    }
+    return out;
+}
+
+BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surface> surfaces,
+                                 std::span<const std::int32_t> labels,
+                                 const BoundPlaneConfig& config) {
+    validate(config);
+    if (labels.size() != cloud.size())
+        bad({"bound planes: ", std::to_string(labels.size()), " labels for ",
+             std::to_string(cloud.size()), " points"});
+    for (std::size_t i = 0; i < labels.size(); ++i)
+        if (labels[i] < -1 ||
+            (labels[i] >= 0 && static_cast<std::size_t>(labels[i]) >= surfaces.size()))
+            bad({"bound planes: point ", std::to_string(i), " has label ",
+                 std::to_string(labels[i]), " but there are ", std::to_string(surfaces.size()),
+                 " surfaces"});
+    for (std::size_t s = 0; s < surfaces.size(); ++s) {
+        const Surface& f = surfaces[s];
+        if (!f.normal.allFinite() || std::abs(f.normal.norm() - 1) > 1e-6 ||
+            !f.centroid.allFinite() || !f.home.allFinite() || !(f.radius > 0))
+            bad({"bound planes: surface ", std::to_string(s),
+                 " has a non-unit normal, a non-finite position or no radius"});
+    }
+    BoundPlanes out;
+    BoundPlaneConfig& cfg = out.config;
+    cfg = config;
+    const int threads = resolve_threads(cfg.threads);
+    const std::size_t ns = surfaces.size();
+    out.plane_of_patch.assign(ns, -1);
+    out.stats.patches = ns;
+
+    // Member points and their moments per patch.
+    const Members members = collect_members(cloud.points, labels, ns);
+    std::vector<CentredMoments> moments(ns);
+    std::vector<std::uint8_t> used(ns, 0);
+    std::vector<double> thickness;
+    for (std::size_t s = 0; s < ns; ++s) {
+        const auto idx = members.of(s);
+        if (idx.empty()) continue;
+        used[s] = 1;
+        thickness.push_back(std::sqrt(std::max(surfaces[s].eigenvalues[0], 0.0)));
+        Vec3d sum = Vec3d::Zero();
+        Mat3d sq = Mat3d::Zero();
+        for (const std::uint32_t i : idx) {
+            const Vec3d d = cloud.points[i].cast<double>() - surfaces[s].home;
+            sum += d;
+            sq += d * d.transpose();
+        }
+        CentredMoments& m = moments[s];
+        m.n = double(idx.size());
+        m.mean = surfaces[s].home + sum / m.n;
+        m.scatter = sq - sum * sum.transpose() / m.n;
+    }
+    out.stats.noise = median_of(thickness);
+    if (cfg.max_offset == 0)
+        cfg.max_offset = std::clamp(3 * out.stats.noise, cfg.mu / 4, cfg.mu / 2);
+    if (cfg.adjacency == 0) cfg.adjacency = cfg.mu / 2;
+    if (cfg.max_gap == 0) cfg.max_gap = 5 * cfg.mu;
+    if (cfg.resolution == 0) cfg.resolution = cfg.mu / 2;
+    if (cfg.simplify_tolerance == 0) cfg.simplify_tolerance = cfg.resolution;
+    if (ns == 0 || members.index.empty()) return out;
+
+    // Patch graph, as CSR.
+    const auto pairs =
+        adjacent_patch_pairs(cloud.points, labels, surfaces, used, cfg.adjacency, threads);
+    out.stats.adjacent_pairs = pairs.size();
+    std::vector<std::uint32_t> adj_off(ns + 1, 0), adj;
+    for (const auto& [a, b] : pairs) {
+        ++adj_off[a + 1];
+        ++adj_off[b + 1];
+    }
+    for (std::size_t s = 0; s < ns; ++s) adj_off[s + 1] += adj_off[s];
+    adj.resize(adj_off[ns]);
+    {
+        std::vector<std::uint32_t> fill(adj_off.begin(), adj_off.end() - 1);
+        for (const auto& [a, b] : pairs) {  // pairs are sorted, so each list comes out ascending
+            adj[fill[a]++] = b;
+            adj[fill[b]++] = a;
+        }
+        for (std::size_t s = 0; s < ns; ++s)
+            std::sort(adj.begin() + adj_off[s], adj.begin() + adj_off[s + 1]);
+    }
+
+    // Region growing, seeds by decreasing member count.
+    const double cos_max = std::cos(cfg.max_angle_deg * kDeg);
+    const double off = cfg.max_offset;
+    auto parallel = [&](const Vec3d& a, const Vec3d& b) { return std::abs(a.dot(b)) >= cos_max; };
+    auto coplanar = [&](const Surface& p, const Surface& q) {
+        return parallel(p.normal, q.normal) &&
+               std::abs(q.plane().signed_distance(p.centroid)) <= off &&
+               std::abs(p.plane().signed_distance(q.centroid)) <= off;
+    };
+    std::vector<std::uint32_t> seeds;
+    for (std::uint32_t s = 0; s < ns; ++s)
+        if (used[s]) seeds.push_back(s);
+    std::stable_sort(seeds.begin(), seeds.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return members.of(a).size() > members.of(b).size();
+    });
+    std::vector<std::int32_t> region(ns, -1);
+    std::vector<std::vector<std::uint32_t>> region_members;
+    std::vector<CentredMoments> region_moments;
+    std::deque<std::uint32_t> queue;
+    for (const std::uint32_t seed : seeds) {
+        if (region[seed] >= 0) continue;
+        const auto r = static_cast<std::int32_t>(region_members.size());
+        std::vector<std::uint32_t> list{seed};
+        CentredMoments pooled = moments[seed];
+        Vec3d weighted = surfaces[seed].normal * pooled.n;  // fallback normal while collinear
+        auto region_normal = [&] {
+            const Fit f = fit_moments(pooled);
+            return f.degenerate ? Vec3d(weighted.normalized()) : f.normal;
+        };
+        Vec3d rn = region_normal();
+        region[seed] = r;
+        queue.assign(1, seed);
+        while (!queue.empty()) {
+            const std::uint32_t q = queue.front();
+            queue.pop_front();
+            for (std::uint32_t k = adj_off[q]; k < adj_off[q + 1]; ++k) {
+                const std::uint32_t p = adj[k];
+                if (region[p] >= 0) continue;
+                const Surface& sp = surfaces[p];
+                if (!coplanar(sp, surfaces[q]) || !parallel(sp.normal, rn) ||
+                    std::abs(rn.dot(sp.centroid - pooled.mean)) > off)
+                    continue;
+                region[p] = r;
+                list.push_back(p);
+                pooled.merge(moments[p]);
+                weighted += (sp.normal.dot(weighted) >= 0 ? 1.0 : -1.0) * moments[p].n * sp.normal;
+                rn = region_normal();
+                queue.push_back(p);
+            }
+        }
+        region_members.push_back(std::move(list));
+        region_moments.push_back(pooled);
+    }
+    absorb_fragments(cloud.points, members, adj_off, adj, cfg, region, region_members,
+                     region_moments, moments);
+    bridge_gaps(surfaces, used, region, cfg, region_members, region_moments, threads);
+    std::erase_if(region_members, [](const std::vector<std::uint32_t>& l) { return l.empty(); });
+    std::erase_if(region_moments, [](const CentredMoments& m) { return m.n == 0; });
+    for (std::vector<std::uint32_t>& list : region_members) std::sort(list.begin(), list.end());
+
+    // Each region's plane, frame and boundary; independent, so in parallel.
+    const std::size_t nr = region_members.size();
+    std::vector<BoundPlane> planes(nr);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (std::size_t r = 0; r < nr; ++r) {
+        BoundPlane& bp = planes[r];
+        const std::vector<std::uint32_t>& list = region_members[r];
+        const CentredMoments& all = region_moments[r];
+        Fit fit = fit_moments(all);
+        CentredMoments m = all;
+        std::vector<Vec3d> points;  // the members, contiguous: every pass below streams them
+        points.reserve(static_cast<std::size_t>(all.n));
+        for (const std::uint32_t s : list)
+            for (const std::uint32_t i : members.of(s))
+                points.push_back(cloud.points[i].cast<double>());
+        if (!fit.degenerate) {
+            // Until the inliers stop changing (two or three passes on the test scenes).
+            const double spread = std::sqrt(all.scatter.trace() / all.n);
+            std::vector<double> scratch;
+            for (int pass = 0; pass < kRefitPasses; ++pass) {
+                const CentredMoments inliers =
+                    inlier_moments(points, fit.normal, m.mean, kInlierSigmas, spread, scratch);
+                const Fit f = fit_moments(inliers);
+                if (inliers.n < 3 || f.degenerate) break;
+                const bool same = inliers.n == m.n;
+                m = inliers;
+                fit = f;
+                if (same) break;
+            }
+        }
+        bp.patches = list;
+        bp.point_count = static_cast<std::uint64_t>(all.n);
+        bp.centroid = m.mean;
+        bp.degenerate = fit.degenerate;
+        Vec3d n = fit.normal;
+        if (fit.degenerate) {  // the patches' own normals, sign-aligned and point-weighted
+            Vec3d sum = Vec3d::Zero();
+            for (const std::uint32_t s : list)
+                sum += (surfaces[s].normal.dot(surfaces[list[0]].normal) >= 0 ? 1.0 : -1.0) *
+                       moments[s].n * surfaces[s].normal;
+            n = sum.norm() > 0 ? Vec3d(sum.normalized()) : surfaces[list[0]].normal;
+        }
+        // Orientation: the majority of the member patches' (sensor-facing) normals; a tie goes
+        // to the point-weighted vote, then to the first patch.
+        long votes = 0;
+        double weight = 0;
+        for (const std::uint32_t s : list) {
+            const double d = surfaces[s].normal.dot(n);
+            votes += d >= 0 ? 1 : -1;
+            weight += (d >= 0 ? 1 : -1) * moments[s].n;
+        }
+        const bool flip = votes != 0
+                              ? votes < 0
+                              : (weight != 0 ? weight < 0 : surfaces[list[0]].normal.dot(n) < 0);
+        bp.normal = flip ? Vec3d(-n) : n;
+        bp.rms = std::sqrt(std::max(0.0, bp.normal.dot(all.scatter * bp.normal) / all.n +
+                                             std::pow(bp.normal.dot(all.mean - m.mean), 2)));
+        bp.u_axis = principal_axis(bp.normal, all.scatter);
+        bp.v_axis = bp.normal.cross(bp.u_axis);
+        std::vector<Vec2d> flat;
+        flat.reserve(bp.point_count);
+        std::vector<double> spacing;
+        for (const Vec3d& p : points) {
+            bp.bounds.add(p);
+            flat.push_back(bp.to_plane(p));
+        }
+        for (const std::uint32_t s : list) {
+            const Surface& f = surfaces[s];
+            if (f.neighbours > 0)
+                spacing.push_back(std::sqrt(M_PI * f.radius * f.radius / double(f.neighbours)));
+        }
+        bp.closing_radius = cfg.closing_radius > 0
+                                ? cfg.closing_radius
+                                : std::max(cfg.resolution, 1.5 * median_of(std::move(spacing)));
+        const PlaneRaster raster = rasterise_points(flat, cfg.resolution, bp.closing_radius);
+        bp.polygons =
+            trace_boundaries(raster, cfg.simplify_tolerance, 2 * raster.cell * raster.cell);
+        for (const PolygonWithHoles& poly : bp.polygons) bp.area += polygon_area(poly);
+    }
+
+    // Largest first; ties by smallest member id (every plane has members, all distinct).
+    std::vector<std::size_t> order(nr);
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        if (planes[a].point_count != planes[b].point_count)
+            return planes[a].point_count > planes[b].point_count;
+        return planes[a].patches[0] < planes[b].patches[0];
+    });
+    out.planes.reserve(nr);
+    for (const std::size_t r : order) {
+        const auto id = static_cast<std::int32_t>(out.planes.size());
+        for (const std::uint32_t s : planes[r].patches) out.plane_of_patch[s] = id;
+        out.stats.patches_merged += planes[r].patches.size();
+        out.stats.points += planes[r].point_count;
+        out.stats.degenerate += planes[r].degenerate ? 1 : 0;
+        out.stats.area += planes[r].area;
+        out.planes.push_back(std::move(planes[r]));
+    }
+    return out;
+}
+
+}  // namespace surfgrow

@@ -1,0 +1,406 @@
+#include "surfgrow/robot/coverage.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <tuple>
+
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/text.hpp"
+#include "surfgrow/core/threads.hpp"
+#include "surfgrow/planes/plane_raster.hpp"
+
+namespace surfgrow {
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+[[noreturn]] void bad(std::initializer_list<std::string_view> what) {
+    throw Error(ErrorCode::kInvalidParameter, cat(what));
+}
+
+// Calls f(cell index) for every cell of `r` whose centre lies within `radius` of c.
+template <class F>
+void for_each_cell_in_disc(const PlaneRaster& r, const Vec2d& c, double radius, F&& f) {
+    if (r.width == 0) return;
+    const double inv = 1.0 / r.cell;
+    const int y0 = std::max(0, static_cast<int>(std::ceil((c.y() - radius - r.origin.y()) * inv)));
+    const int y1 =
+        std::min(r.height - 1, static_cast<int>(std::floor((c.y() + radius - r.origin.y()) * inv)));
+    for (int y = y0; y <= y1; ++y) {
+        const double dy = r.origin.y() + y * r.cell - c.y();
+        const double rem = radius * radius - dy * dy;
+        if (rem < 0) continue;
+        const double hw = std::sqrt(rem);
+        const int x0 = std::max(0, static_cast<int>(std::ceil((c.x() - hw - r.origin.x()) * inv)));
+        const int x1 =
+            std::min(r.width - 1, static_cast<int>(std::floor((c.x() + hw - r.origin.x()) * inv)));
+        const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(r.width);
+        for (int x = x0; x <= x1; ++x) f(row + static_cast<std::size_t>(x));
+    }
+}
+
+// Whether p lies on the plane's area: the raster cell nearest to it is occupied.
+bool on_surface(const PlaneRaster& r, const Vec2d& p) {
+    const long x = std::lround((p.x() - r.origin.x()) / r.cell);
+    const long y = std::lround((p.y() - r.origin.y()) / r.cell);
+    return x >= 0 && y >= 0 && x < r.width && y < r.height &&
+           r.at(static_cast<int>(x), static_cast<int>(y));
+}
+
+// Goals on one plane, in its 2D coordinates.
+struct PlaneGoals {
+    std::vector<Vec2d> points;
+    std::vector<std::uint32_t> rows;
+    std::vector<std::uint8_t> from_home;
+    double covered_fraction = 0.0;
+};
+
+PlaneGoals cover_plane(const BoundPlane& plane, std::span<const Surface> surfaces, double b,
+                       double spacing) {
+    PlaneGoals g;
+    const PlaneRaster samples = rasterise_polygons(plane.polygons, spacing);
+    std::vector<std::uint8_t> covered(samples.cells.size(), 0);
+    std::size_t uncovered = samples.occupied();
+    const double row_step = 1.5 * b, col_step = std::sqrt(3.0) * b;
+    const double y_base = samples.origin.y();
+    auto gain = [&](const Vec2d& c) {
+        std::size_t n = 0;
+        for_each_cell_in_disc(samples, c, b,
+                              [&](std::size_t i) { n += samples.cells[i] && !covered[i]; });
+        return n;
+    };
+    auto take = [&](const Vec2d& c, std::uint32_t row, bool home) {
+        for_each_cell_in_disc(samples, c, b, [&](std::size_t i) {
+            if (samples.cells[i] && !covered[i]) {
+                covered[i] = 1;
+                --uncovered;
+            }
+        });
+        g.points.push_back(c);
+        g.rows.push_back(row);
+        g.from_home.push_back(home ? 1 : 0);
+    };
+    auto row_of = [&](const Vec2d& c) {
+        return static_cast<std::uint32_t>(std::max(0L, std::lround((c.y() - y_base) / row_step)));
+    };
+    // 1. The hexagonal lattice, rows along u from the lowest sample row.
+    if (uncovered > 0) {
+        const double x_lo = samples.origin.x() - col_step;
+        const double x_hi = samples.origin.x() + samples.cell * samples.width + col_step;
+        const double y_hi = y_base + samples.cell * samples.height + row_step;
+        for (std::uint32_t k = 0; y_base + k * row_step <= y_hi; ++k) {
+            const double y = y_base + k * row_step;
+            for (double x = x_lo + (k % 2 ? 0.5 * col_step : 0.0); x <= x_hi; x += col_step) {
+                const Vec2d c(x, y);
+                if (on_surface(samples, c) && gain(c) > 0) take(c, k, false);
+            }
+        }
+    }
+    // 2. Lazy greedy over home points and grid points near what is left (along the boundary).
+    if (uncovered > 0) {
+        std::vector<Vec2d> cand;
+        std::vector<std::uint8_t> is_home;
+        for (const std::uint32_t s : plane.patches) {
+            if (s >= surfaces.size()) continue;
+            const Vec2d h = plane.to_plane(surfaces[s].home);
+            if (on_surface(samples, h)) {
+                cand.push_back(h);
+                is_home.push_back(1);
+            }
+        }
+        std::vector<std::uint8_t> near(samples.cells.size(), 0);
+        for (int y = 0; y < samples.height; ++y)
+            for (int x = 0; x < samples.width; ++x) {
+                const std::size_t i = std::size_t(y) * std::size_t(samples.width) + std::size_t(x);
+                if (samples.cells[i] && !covered[i])
+                    for_each_cell_in_disc(samples, samples.centre(x, y), b,
+                                          [&](std::size_t j) { near[j] = 1; });
+            }
+        for (int y = 0; y < samples.height; ++y)
+            for (int x = 0; x < samples.width; ++x) {
+                const std::size_t i = std::size_t(y) * std::size_t(samples.width) + std::size_t(x);
+                if (near[i] && samples.cells[i]) {
+                    cand.push_back(samples.centre(x, y));
+                    is_home.push_back(0);
+                }
+            }
+        // Largest gain first; then home points; then the lower index. Gains only shrink, so a
+        // popped entry whose recomputed gain still matches its key is the true maximum.
+        using Entry = std::tuple<std::size_t, std::uint8_t, std::size_t>;  // gain, home, -index
+        auto worse = [](const Entry& x, const Entry& y) {
+            if (std::get<0>(x) != std::get<0>(y)) return std::get<0>(x) < std::get<0>(y);
+            if (std::get<1>(x) != std::get<1>(y)) return std::get<1>(x) < std::get<1>(y);
+            return std::get<2>(x) > std::get<2>(y);
+        };
+        std::priority_queue<Entry, std::vector<Entry>, decltype(worse)> heap(worse);
+        for (std::size_t c = 0; c < cand.size(); ++c)
+            if (const std::size_t n = gain(cand[c]); n > 0) heap.emplace(n, is_home[c], c);
+        while (uncovered > 0 && !heap.empty()) {
+            const auto [old_gain, home, c] = heap.top();
+            heap.pop();
+            const std::size_t n = gain(cand[c]);
+            if (n == 0) continue;
+            if (n < old_gain) {
+                heap.emplace(n, home, c);
+                continue;
+            }
+            take(cand[c], row_of(cand[c]), home != 0);
+        }
+    }
+    // A sliver with no grid point inside: one goal at its outer ring's mean vertex.
+    if (g.points.empty() && !plane.polygons.empty() && !plane.polygons[0].outer.empty()) {
+        Vec2d mean = Vec2d::Zero();
+        for (const Vec2d& p : plane.polygons[0].outer) mean += p;
+        mean /= double(plane.polygons[0].outer.size());
+        take(mean, 0, false);
+    }
+    // Coverage on an independent grid, twice as fine and offset by a quarter cell.
+    const double fine = 0.5 * samples.cell;
+    const PlaneRaster eval = rasterise_polygons(plane.polygons, fine, Vec2d::Constant(0.5 * fine));
+    std::vector<std::uint8_t> hit(eval.cells.size(), 0);
+    for (const Vec2d& p : g.points)
+        for_each_cell_in_disc(eval, p, b, [&](std::size_t i) { hit[i] = eval.cells[i]; });
+    const std::size_t total = eval.occupied();
+    const auto got = static_cast<std::size_t>(std::count(hit.begin(), hit.end(), std::uint8_t{1}));
+    g.covered_fraction = total ? double(got) / double(total) : (g.points.empty() ? 0.0 : 1.0);
+    return g;
+}
+
+// A plane's goals in sweep order: rows ascending, alternating direction along u.
+struct Sweep {
+    std::uint32_t plane = 0;
+    std::vector<std::uint32_t> order;  // indices into the plane's goals
+    std::vector<double> dir;           // +1 / -1 along u, per entry of order
+    bool reversed = false;             // run backwards (last goal first, directions negated)
+    Vec3d entry[2], exit[2];           // tool positions, [forward, reversed]
+};
+
+Sweep make_sweep(std::uint32_t plane, const PlaneGoals& g) {
+    Sweep s;
+    s.plane = plane;
+    s.order.reserve(g.points.size());
+    for (std::uint32_t i = 0; i < g.points.size(); ++i) s.order.push_back(i);
+    std::sort(s.order.begin(), s.order.end(), [&](std::uint32_t a, std::uint32_t b) {
+        if (g.rows[a] != g.rows[b]) return g.rows[a] < g.rows[b];
+        if (g.points[a].x() != g.points[b].x()) return g.points[a].x() < g.points[b].x();
+        return a < b;
+    });
+    // Alternate by visited row: reverse every other run of equal rows.
+    std::size_t begin = 0, parity = 0;
+    while (begin < s.order.size()) {
+        std::size_t end = begin;
+        while (end < s.order.size() && g.rows[s.order[end]] == g.rows[s.order[begin]]) ++end;
+        if (parity % 2) std::reverse(s.order.begin() + long(begin), s.order.begin() + long(end));
+        s.dir.insert(s.dir.end(), end - begin, parity % 2 ? -1.0 : 1.0);
+        ++parity;
+        begin = end;
+    }
+    return s;
+}
+
+struct Pose {
+    Vec3d tool, axis;
+    Eigen::Quaterniond q;
+};
+
+Pose pose_at(const Vec3d& p, const Vec3d& n, const Vec3d& dir, double tilt, double standoff) {
+    const Vec3d back = (std::cos(tilt) * n - std::sin(tilt) * dir).normalized();
+    Pose pose;
+    pose.tool = p + standoff * back;
+    pose.axis = -back;
+    const Vec3d z = pose.axis;
+    Vec3d x = dir - dir.dot(z) * z;
+    x = x.norm() > 1e-12 ? Vec3d(x.normalized()) : Vec3d(z.unitOrthogonal());
+    Mat3d frame;
+    frame << x, z.cross(x), z;
+    pose.q = Eigen::Quaterniond(frame).normalized();
+    if (pose.q.w() < 0) pose.q.coeffs() *= -1.0;
+    return pose;
+}
+
+// Visiting order of the sweeps: nearest neighbour, then 2-opt with each sweep run either way.
+void order_sweeps(std::vector<Sweep>& sweeps, const std::optional<Vec3d>& start) {
+    const std::size_t m = sweeps.size();
+    if (m == 0) return;
+    std::vector<std::size_t> seq;
+    std::vector<std::uint8_t> flip, done(m, 0);
+    Vec3d at = start.value_or(sweeps[0].entry[0]);
+    for (std::size_t k = 0; k < m; ++k) {
+        std::size_t best = m;
+        std::uint8_t best_flip = 0;
+        double best_d = 0;
+        for (std::size_t i = 0; i < m; ++i) {
+            if (done[i]) continue;
+            for (std::uint8_t f = 0; f < 2; ++f) {
+                const double d = (sweeps[i].entry[f] - at).norm();
+                if (best == m || d < best_d) {
+                    best = i;
+                    best_flip = f;
+                    best_d = d;
+                }
+            }
+        }
+        done[best] = 1;
+        seq.push_back(best);
+        flip.push_back(best_flip);
+        at = sweeps[best].exit[best_flip];
+    }
+    auto entry = [&](std::size_t k, bool toggled) {
+        return sweeps[seq[k]].entry[flip[k] ^ (toggled ? 1 : 0)];
+    };
+    auto exit = [&](std::size_t k, bool toggled) {
+        return sweeps[seq[k]].exit[flip[k] ^ (toggled ? 1 : 0)];
+    };
+    constexpr std::size_t kMaxTwoOpt = 5000;  // O(m^2) per pass; beyond this keep the greedy order
+    for (int pass = 0; pass < 100 && m > 1 && m <= kMaxTwoOpt; ++pass) {
+        bool improved = false;
+        for (std::size_t i = 0; i < m; ++i) {
+            for (std::size_t j = i; j < m; ++j) {
+                double before = 0, after = 0;
+                if (i > 0 || start) {
+                    const Vec3d prev = i > 0 ? exit(i - 1, false) : *start;
+                    before += (entry(i, false) - prev).norm();
+                    after += (entry(j, true) - prev).norm();
+                }
+                if (j + 1 < m) {
+                    before += (entry(j + 1, false) - exit(j, false)).norm();
+                    after += (entry(j + 1, false) - exit(i, true)).norm();
+                }
+                if (after < before - 1e-9 * (1 + before)) {
+                    std::reverse(seq.begin() + long(i), seq.begin() + long(j) + 1);
+                    std::reverse(flip.begin() + long(i), flip.begin() + long(j) + 1);
+                    for (std::size_t k = i; k <= j; ++k) flip[k] ^= 1;
+                    improved = true;
+                }
+            }
+        }
+        if (!improved) break;
+    }
+    std::vector<Sweep> ordered;
+    ordered.reserve(m);
+    for (std::size_t k = 0; k < m; ++k) {
+        ordered.push_back(std::move(sweeps[seq[k]]));
+        ordered.back().reversed = flip[k] != 0;
+    }
+    sweeps = std::move(ordered);
+}
+
+}  // namespace
+
+void validate(const CoverageConfig& c) {
+    auto length = [](const char* name, double v, bool zero_ok) {
+        if (!std::isfinite(v) || v < 0 || (!zero_ok && v == 0))
+            bad({name, zero_ok ? " must be >= 0 (0: default), got " : " must be positive, got ",
+                 num(v)});
+    };
+    length("blast radius", c.blast_radius, true);
+    length("standoff", c.standoff, false);
+    length("sample spacing", c.sample_spacing, true);
+    if (!(c.min_angle_deg >= 0 && c.min_angle_deg <= c.max_angle_deg && c.max_angle_deg < 90))
+        bad({"angle band must satisfy 0 <= min <= max < 90 degrees, got ", num(c.min_angle_deg),
+             ":", num(c.max_angle_deg)});
+    if (c.tilt_deg && !(*c.tilt_deg >= c.min_angle_deg && *c.tilt_deg <= c.max_angle_deg))
+        bad({"tilt ", num(*c.tilt_deg), " degrees lies outside the angle band ",
+             num(c.min_angle_deg), ":", num(c.max_angle_deg)});
+    if (c.start && !c.start->allFinite()) bad({"start position must be finite"});
+    if (c.blast_radius > 0 && c.sample_spacing > c.blast_radius)
+        bad({"sample spacing ", num(c.sample_spacing), " exceeds the blast radius ",
+             num(c.blast_radius)});
+    if (c.threads < 0) bad({"threads must be >= 0, got ", std::to_string(c.threads)});
+}
+
+CoveragePlan plan_coverage(const BoundPlanes& planes, std::span<const Surface> surfaces,
+                           const CoverageConfig& config) {
+    validate(config);
+    CoveragePlan plan;
+    CoverageConfig& cfg = plan.config;
+    cfg = config;
+    if (cfg.blast_radius == 0) cfg.blast_radius = planes.config.mu;
+    if (!(cfg.blast_radius > 0)) bad({"blast radius must be positive (the planes carry no mu)"});
+    if (cfg.sample_spacing == 0) cfg.sample_spacing = cfg.blast_radius / 3;
+    if (cfg.sample_spacing > cfg.blast_radius)
+        bad({"sample spacing ", num(cfg.sample_spacing), " exceeds the blast radius ",
+             num(cfg.blast_radius)});
+    if (!cfg.tilt_deg) cfg.tilt_deg = cfg.min_angle_deg;
+    const int threads = resolve_threads(cfg.threads);
+
+    const std::size_t np = planes.planes.size();
+    std::vector<PlaneGoals> goals(np);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (std::size_t p = 0; p < np; ++p)
+        goals[p] = cover_plane(planes.planes[p], surfaces, cfg.blast_radius, cfg.sample_spacing);
+
+    const double tilt = *cfg.tilt_deg * kDeg;
+    std::vector<Sweep> sweeps;
+    for (std::size_t p = 0; p < np; ++p) {
+        const BoundPlane& bp = planes.planes[p];
+        plan.stats.area += bp.area;
+        plan.stats.covered_area += bp.area * goals[p].covered_fraction;
+        if (goals[p].points.empty()) continue;
+        Sweep s = make_sweep(static_cast<std::uint32_t>(p), goals[p]);
+        auto tool_at = [&](std::size_t k, double sign) {
+            return pose_at(bp.to_world(goals[p].points[s.order[k]]), bp.normal,
+                           sign * s.dir[k] * bp.u_axis, tilt, cfg.standoff)
+                .tool;
+        };
+        const std::size_t last = s.order.size() - 1;
+        s.entry[0] = tool_at(0, 1);
+        s.exit[0] = tool_at(last, 1);
+        s.entry[1] = tool_at(last, -1);
+        s.exit[1] = tool_at(0, -1);
+        sweeps.push_back(std::move(s));
+    }
+    order_sweeps(sweeps, cfg.start);
+
+    for (const Sweep& s : sweeps) {
+        const BoundPlane& bp = planes.planes[s.plane];
+        const PlaneGoals& g = goals[s.plane];
+        PlaneCoverage pc;
+        pc.plane = s.plane;
+        pc.goals = static_cast<std::uint32_t>(s.order.size());
+        pc.first_goal = static_cast<std::uint32_t>(plan.goals.size());
+        pc.area = bp.area;
+        pc.covered_fraction = g.covered_fraction;
+        plan.per_plane.push_back(pc);
+        const std::size_t n = s.order.size();
+        for (std::size_t j = 0; j < n; ++j) {
+            const std::size_t k = s.reversed ? n - 1 - j : j;
+            const std::uint32_t i = s.order[k];
+            CoverageGoal goal;
+            goal.plane = s.plane;
+            goal.row = g.rows[i];
+            goal.position = bp.to_world(g.points[i]);
+            goal.normal = bp.normal;
+            goal.direction = (s.reversed ? -1.0 : 1.0) * s.dir[k] * bp.u_axis;
+            const Pose pose = pose_at(goal.position, bp.normal, goal.direction, tilt, cfg.standoff);
+            goal.tool_position = pose.tool;
+            goal.tool_axis = pose.axis;
+            goal.orientation = pose.q;
+            goal.tilt_deg =
+                std::atan2(pose.axis.cross(-bp.normal).norm(), -pose.axis.dot(bp.normal)) / kDeg;
+            goal.from_home = g.from_home[i] != 0;
+            goal.transition = j == 0 && !plan.goals.empty();
+            plan.goals.push_back(goal);
+        }
+    }
+
+    CoverageStats& st = plan.stats;
+    st.goals = plan.goals.size();
+    st.planes = sweeps.size();
+    st.transitions = sweeps.empty() ? 0 : sweeps.size() - 1;
+    st.coverage = st.area > 0 ? st.covered_area / st.area : 0.0;
+    for (std::size_t k = 1; k < plan.goals.size(); ++k) {
+        const CoverageGoal &a = plan.goals[k - 1], &b = plan.goals[k];
+        const double d = (b.tool_position - a.tool_position).norm();
+        st.tool_path_length += d;
+        (b.transition ? st.transition_length : st.sweep_length) += d;
+        st.goal_path_length += (b.position - a.position).norm();
+    }
+    return plan;
+}
+
+}  // namespace surfgrow

@@ -1,0 +1,336 @@
+// Bound planes on analytic scenes: exact normals, holes, concave outlines, bad input.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+#include <functional>
+#include <random>
+
+#include "support/test_support.hpp"
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/surface_grower.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
+#include "surfgrow/planes/plane_mesh.hpp"
+
+namespace surfgrow {
+namespace {
+
+using test::Rect;
+
+constexpr double kDeg = M_PI / 180.0;
+
+struct Grown {
+    PointCloud cloud;
+    GrowResult result;
+};
+
+// Samples the rectangles (5 mm grid, noise sigma), drops points where `cut` says, grows.
+Grown grow_rects(const std::vector<Rect>& rects, double sigma,
+                 const std::function<bool(const Vec3d&)>& cut = {}, std::uint64_t seed = 1) {
+    Grown g;
+    std::mt19937_64 rng(seed);
+    std::vector<Vec3f> pts;
+    for (const Rect& r : rects) test::sample_rect(r, 0.005, 0.3, sigma, rng, pts);
+    for (const Vec3f& p : pts)
+        if (!cut || !cut(p.cast<double>())) g.cloud.points.push_back(p);
+    // In front of every face used here (the floor, the wall at x = 0, plates at z = 0.5): a
+    // sensor in a plate's own plane would see it edge-on, where the disk test rightly finds none.
+    g.cloud.viewpoint = Vec3d(0.3, 0.4, 1.0);
+    g.result = grow_surfaces(g.cloud, GrowerConfig{});
+    return g;
+}
+
+BoundPlanes planes_of(const Grown& g, BoundPlaneConfig cfg = {}) {
+    return compute_bound_planes(g.cloud, g.result, cfg);
+}
+
+// Planes holding at least 2 % of the points: the faces, without edge slivers.
+std::vector<const BoundPlane*> major(const BoundPlanes& p) {
+    std::vector<const BoundPlane*> out;
+    for (const BoundPlane& bp : p.planes)
+        if (double(bp.point_count) >= 0.02 * double(p.stats.points)) out.push_back(&bp);
+    return out;
+}
+
+const Rect kFloor{{0.2, 0.15, 0}, Vec3d::UnitX(), Vec3d::UnitY(), 0.2, 0.15};
+const Rect kWall{{0, 0.15, 0.15}, Vec3d::UnitY(), Vec3d::UnitZ(), 0.15, 0.15};
+
+TEST(BoundPlanes, AnLOfTwoPlanesGivesTwoRegionsWithExactNormals) {
+    const Grown g = grow_rects({kFloor, kWall}, 0.0);
+    const BoundPlanes p = planes_of(g);
+    const auto faces = major(p);
+    ASSERT_EQ(faces.size(), 2u);
+    // The floor has more points, so it comes first; normals face the viewpoint.
+    EXPECT_LT(angle_between(faces[0]->normal, Vec3d::UnitZ()), 1e-3);
+    EXPECT_LT(angle_between(faces[1]->normal, Vec3d::UnitX()), 1e-3);
+    EXPECT_NEAR(faces[0]->centroid.z(), 0.0, 1e-4);
+    EXPECT_NEAR(faces[1]->centroid.x(), 0.0, 1e-4);
+    EXPECT_NEAR(faces[0]->area, 0.4 * 0.3, 0.05 * 0.12);
+    EXPECT_NEAR(faces[1]->area, 0.3 * 0.3, 0.05 * 0.09);
+    EXPECT_LT(faces[0]->rms, 5e-4);  // noise-free; what there is comes from edge points
+    // Nearly every point is in one of the two faces.
+    EXPECT_GE(double(faces[0]->point_count + faces[1]->point_count), 0.97 * double(p.stats.points));
+    EXPECT_EQ(p.stats.patches, g.result.surfaces.size());
+    EXPECT_EQ(p.stats.patches_merged, g.result.surfaces.size());
+}
+
+TEST(BoundPlanes, NoisyLKeepsNormalsWithinATenthOfADegree) {
+    const Grown g = grow_rects({kFloor, kWall}, 0.0015);
+    const BoundPlanes p = planes_of(g);
+    const auto faces = major(p);
+    ASSERT_EQ(faces.size(), 2u);
+    EXPECT_LT(angle_between(faces[0]->normal, Vec3d::UnitZ()), 0.1 * kDeg);
+    EXPECT_LT(angle_between(faces[1]->normal, Vec3d::UnitX()), 0.1 * kDeg);
+    EXPECT_NEAR(faces[0]->rms, 0.0015, 0.0004);
+    // The offset default comes from the measured noise: 3 sigma, within [mu/4, mu/2].
+    EXPECT_NEAR(p.config.max_offset, 3 * p.stats.noise, 1e-12);
+    EXPECT_GT(p.stats.noise, 0.0008);
+}
+
+TEST(BoundPlanes, AStripOfTheNeighbouringFaceDoesNotTiltThePlane) {
+    // A floor patch (noise 1 mm) that took in the wall's points within its tolerance along their
+    // edge, as registration does along every edge (a hand-made result, to control the strip): the
+    // least-squares plane of all members tilts by half a degree; the face's plane is fitted on
+    // the members within 3 robust sigma, which the strip (4 mm and more above) is not.
+    PointCloud c;
+    GrowResult r;
+    std::mt19937_64 rng(7);
+    std::normal_distribution<double> noise(0.0, 0.001);
+    for (int i = 0; i <= 60; ++i)
+        for (int j = 0; j <= 40; ++j)
+            c.points.emplace_back(float(0.005 * i), float(0.005 * j), float(noise(rng)));
+    for (int k = 2; k <= 6; ++k)  // the wall x = 0.3, from 4 to 12 mm above the floor
+        for (int j = 0; j <= 40; ++j)
+            c.points.emplace_back(float(0.3 + noise(rng)), float(0.005 * j), float(0.002 * k));
+    r.labels.assign(c.points.size(), 0);
+    Surface surf;
+    surf.home = Vec3d(0.15, 0.1, 0);
+    surf.centroid = surf.home;
+    surf.normal = Vec3d::UnitZ();
+    surf.eigenvalues = Vec3d(1e-6, 1e-3, 1e-2);
+    surf.radius = 0.012;
+    surf.neighbours = 20;
+    surf.point_count = c.points.size();
+    r.surfaces.push_back(surf);
+    c.viewpoint = Vec3d(0.15, 0.1, 1);
+
+    // The plain least-squares normal, for contrast.
+    Vec3d mean = Vec3d::Zero();
+    for (const Vec3f& p : c.points) mean += p.cast<double>();
+    mean /= double(c.points.size());
+    Mat3d cov = Mat3d::Zero();
+    for (const Vec3f& p : c.points)
+        cov += (p.cast<double>() - mean) * (p.cast<double>() - mean).transpose();
+    const Vec3d plain = Eigen::SelfAdjointEigenSolver<Mat3d>(cov).eigenvectors().col(0);
+    EXPECT_GT(angle_between(plain, Vec3d::UnitZ()), 0.3 * kDeg);
+
+    const BoundPlanes p = compute_bound_planes(c, r, BoundPlaneConfig{});
+    ASSERT_EQ(p.planes.size(), 1u);
+    const BoundPlane& bp = p.planes[0];
+    EXPECT_LT(angle_between(bp.normal, Vec3d::UnitZ()), 0.05 * kDeg);
+    EXPECT_NEAR(bp.centroid.z(), 0.0, 3e-4);     // the inliers' centroid, on the floor
+    EXPECT_EQ(bp.point_count, c.points.size());  // every member stays in the face
+    EXPECT_GT(bp.rms, 0.002);                    // which the strip's distances show
+}
+
+TEST(BoundPlanes, APlateWithASquareHoleHasOneHoleOfTheRightArea) {
+    const Rect plate{{0, 0, 0.5}, Vec3d::UnitX(), Vec3d::UnitY(), 0.2, 0.15};
+    const Grown g = grow_rects({plate}, 0.0005, [](const Vec3d& p) {
+        return std::abs(p.x() - 0.05) < 0.05 && std::abs(p.y()) < 0.05;  // 100 mm square
+    });
+    const BoundPlanes p = planes_of(g);
+    ASSERT_EQ(p.planes.size(), 1u);
+    const BoundPlane& bp = p.planes[0];
+    ASSERT_EQ(bp.polygons.size(), 1u);
+    ASSERT_EQ(bp.polygons[0].holes.size(), 1u);
+    const double hole = std::abs(signed_area(bp.polygons[0].holes[0]));
+    // The boundary runs half a raster cell outside the outermost points: the hole shrinks by
+    // about a 3 mm strip on each side, the plate grows by the same.
+    EXPECT_NEAR(hole, 0.1 * 0.1, 0.15 * 0.01);
+    EXPECT_NEAR(bp.area, 0.4 * 0.3 - 0.01, 0.05 * 0.11);
+    EXPECT_NEAR(bp.area, polygon_area(bp.polygons[0]), 1e-12);
+    // The hole's centre is outside, the plate's corner region inside.
+    EXPECT_FALSE(polygon_contains(bp.polygons[0], bp.to_plane({0.05, 0, 0.5})));
+    EXPECT_TRUE(polygon_contains(bp.polygons[0], bp.to_plane({-0.15, -0.1, 0.5})));
+}
+
+TEST(BoundPlanes, AConcaveLPlateGivesAConcavePolygon) {
+    const Rect plate{{0.2, 0.15, 0.5}, Vec3d::UnitX(), Vec3d::UnitY(), 0.2, 0.15};
+    const Grown g = grow_rects({plate}, 0.0005, [](const Vec3d& p) {
+        return p.x() > 0.1 && p.y() > 0.1;  // leaves an L: 0.4 x 0.1 plus 0.1 x 0.2
+    });
+    const BoundPlanes p = planes_of(g);
+    ASSERT_EQ(p.planes.size(), 1u);
+    const BoundPlane& bp = p.planes[0];
+    ASSERT_EQ(bp.polygons.size(), 1u);
+    EXPECT_TRUE(bp.polygons[0].holes.empty());
+    const Ring& ring = bp.polygons[0].outer;
+    std::size_t reflex = 0;
+    for (std::size_t i = 0; i < ring.size(); ++i)
+        reflex += orient2d(ring[(i + ring.size() - 1) % ring.size()], ring[i],
+                           ring[(i + 1) % ring.size()]) < 0;
+    EXPECT_GE(reflex, 1u);
+    EXPECT_FALSE(polygon_contains(bp.polygons[0], bp.to_plane({0.3, 0.2, 0.5})));  // the notch
+    EXPECT_TRUE(polygon_contains(bp.polygons[0], bp.to_plane({0.3, 0.05, 0.5})));
+    EXPECT_TRUE(polygon_contains(bp.polygons[0], bp.to_plane({0.05, 0.25, 0.5})));
+    // The outline runs about half a point spacing outside the outermost points: 1.4 m of
+    // perimeter x ~3 mm.
+    EXPECT_NEAR(bp.area, 0.4 * 0.1 + 0.1 * 0.2 + 1.4 * 0.003, 0.002);
+    // The mesh of the polygon has the same area.
+    const PlaneMesh mesh = mesh_bound_planes(p);
+    double area = 0;
+    for (const auto& t : mesh.triangles) {
+        const Vec3d a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
+        const Vec3d n = (b - a).cross(c - a);
+        EXPECT_GT(n.dot(bp.normal), 0);  // counter-clockwise seen from the normal
+        area += 0.5 * n.norm();
+    }
+    EXPECT_NEAR(area, bp.area, 1e-9);
+}
+
+TEST(BoundPlanes, ParallelPlatesAStepApartStaySeparate) {
+    // Two coplanar-looking plates 20 mm apart in height (a splice plate on a web).
+    const Rect low{{0, 0, 0.5}, Vec3d::UnitX(), Vec3d::UnitY(), 0.2, 0.15};
+    const Rect high{{0.1, 0, 0.52}, Vec3d::UnitX(), Vec3d::UnitY(), 0.05, 0.05};
+    const Grown g = grow_rects({low, high}, 0.0005, [](const Vec3d& p) {
+        return p.z() < 0.51 && std::abs(p.x() - 0.1) < 0.05 && std::abs(p.y()) < 0.05;
+    });
+    const BoundPlanes planes = planes_of(g);  // alive while `faces` points into it
+    const auto faces = major(planes);
+    ASSERT_EQ(faces.size(), 2u);
+    EXPECT_NEAR(faces[0]->centroid.z(), 0.5, 1e-3);
+    EXPECT_NEAR(faces[1]->centroid.z(), 0.52, 1e-3);
+}
+
+TEST(BoundPlanes, ACylinderIsCutIntoStripsNotOnePlane) {
+    // 300 mm radius, quarter turn: pooled moments stop the region drifting round the curve.
+    Grown g;
+    for (double a = 0; a <= M_PI / 2; a += 0.005 / 0.3)
+        for (double z = 0; z <= 0.3; z += 0.005)
+            g.cloud.points.emplace_back(float(0.3 * std::cos(a)), float(0.3 * std::sin(a)),
+                                        float(z));
+    g.cloud.viewpoint = Vec3d(0, 0, 0.15);
+    g.result = grow_surfaces(g.cloud, GrowerConfig{});
+    const BoundPlanes p = planes_of(g);
+    ASSERT_GE(p.planes.size(), 4u);
+    for (const BoundPlane& bp : p.planes) EXPECT_LT(bp.rms, 0.006) << bp.patches.size();
+}
+
+TEST(BoundPlanes, SameBytesForAnyThreadCount) {
+    const Grown g = grow_rects({kFloor, kWall}, 0.0015);
+    BoundPlaneConfig cfg;
+    cfg.threads = 1;
+    const BoundPlanes a = planes_of(g, cfg);
+    for (const int threads : {2, 5}) {
+        cfg.threads = threads;
+        const BoundPlanes b = planes_of(g, cfg);
+        ASSERT_EQ(a.planes.size(), b.planes.size());
+        EXPECT_EQ(a.plane_of_patch, b.plane_of_patch);
+        for (std::size_t k = 0; k < a.planes.size(); ++k) {
+            EXPECT_EQ(a.planes[k].normal, b.planes[k].normal);
+            EXPECT_EQ(a.planes[k].centroid, b.planes[k].centroid);
+            EXPECT_EQ(a.planes[k].area, b.planes[k].area);
+            ASSERT_EQ(a.planes[k].polygons.size(), b.planes[k].polygons.size());
+            for (std::size_t q = 0; q < a.planes[k].polygons.size(); ++q)
+                EXPECT_EQ(a.planes[k].polygons[q].outer, b.planes[k].polygons[q].outer);
+        }
+    }
+}
+
+TEST(BoundPlanes, PlaneLabelsFollowThePatches) {
+    const Grown g = grow_rects({kFloor, kWall}, 0.0);
+    const BoundPlanes p = planes_of(g);
+    const auto labels = plane_labels(p, g.result.labels);
+    ASSERT_EQ(labels.size(), g.cloud.size());
+    std::vector<std::uint64_t> count(p.planes.size(), 0);
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        if (g.result.labels[i] < 0) {
+            EXPECT_EQ(labels[i], -1);
+            continue;
+        }
+        ASSERT_GE(labels[i], 0);
+        ++count[std::size_t(labels[i])];
+    }
+    for (std::size_t k = 0; k < p.planes.size(); ++k) EXPECT_EQ(count[k], p.planes[k].point_count);
+}
+
+TEST(BoundPlanes, EmptyResultGivesNoPlanes) {
+    const BoundPlanes p = compute_bound_planes(PointCloud{}, GrowResult{}, BoundPlaneConfig{});
+    EXPECT_TRUE(p.planes.empty());
+    EXPECT_EQ(p.stats.area, 0.0);
+    // Points but no surfaces (all noise).
+    PointCloud c;
+    c.points = {{0, 0, 0}, {1, 1, 1}};
+    GrowResult r;
+    r.labels = {-1, -1};
+    EXPECT_TRUE(compute_bound_planes(c, r, BoundPlaneConfig{}).planes.empty());
+}
+
+TEST(BoundPlanes, CollinearPatchesGiveADegeneratePlaneNotACrash) {
+    // Two patches whose member points lie on one line (a hand-made result: growing never makes
+    // such a plane, but a result file can hold one).
+    PointCloud c;
+    GrowResult r;
+    for (int i = 0; i < 40; ++i) {
+        c.points.emplace_back(float(0.001 * i), 0.0f, 0.5f);
+        r.labels.push_back(i < 20 ? 0 : 1);
+    }
+    for (int s = 0; s < 2; ++s) {
+        Surface surf;
+        surf.home = Vec3d(0.01 + 0.02 * s, 0, 0.5);
+        surf.centroid = surf.home;
+        surf.normal = Vec3d::UnitZ();
+        surf.radius = 0.012;
+        surf.neighbours = 20;
+        surf.point_count = 20;
+        r.surfaces.push_back(surf);
+    }
+    const BoundPlanes p = compute_bound_planes(c, r, BoundPlaneConfig{});
+    ASSERT_EQ(p.planes.size(), 1u);
+    const BoundPlane& bp = p.planes[0];
+    EXPECT_TRUE(bp.degenerate);
+    EXPECT_EQ(p.stats.degenerate, 1u);
+    EXPECT_LT(angle_between(bp.normal, Vec3d::UnitZ()), 1e-9);  // from the patches
+    EXPECT_TRUE(bp.normal.allFinite());
+    EXPECT_GT(bp.area, 0.0);  // a thin strip along the line
+    EXPECT_FALSE(mesh_bound_planes(p).triangles.empty());
+}
+
+TEST(BoundPlanes, RefusesInconsistentInputAndBadParameters) {
+    const Grown g = grow_rects({kFloor}, 0.0);
+    auto code = [&](const PointCloud& c, const GrowResult& r, const BoundPlaneConfig& cfg) {
+        try {
+            (void)compute_bound_planes(c, r, cfg);
+        } catch (const Error& e) {
+            return e.code();
+        }
+        return ErrorCode::kInternal;
+    };
+    GrowResult short_labels = g.result;
+    short_labels.labels.pop_back();
+    EXPECT_EQ(code(g.cloud, short_labels, {}), ErrorCode::kInvalidParameter);
+    GrowResult bad_label = g.result;
+    bad_label.labels[0] = static_cast<std::int32_t>(bad_label.surfaces.size());
+    EXPECT_EQ(code(g.cloud, bad_label, {}), ErrorCode::kInvalidParameter);
+    GrowResult bad_normal = g.result;
+    bad_normal.surfaces[3].normal = Vec3d(0, 0, 2);
+    EXPECT_EQ(code(g.cloud, bad_normal, {}), ErrorCode::kInvalidParameter);
+    bad_normal.surfaces[3].normal = Vec3d(NAN, 0, 1);
+    EXPECT_EQ(code(g.cloud, bad_normal, {}), ErrorCode::kInvalidParameter);
+    const auto with = [](auto set) {
+        BoundPlaneConfig c;
+        set(c);
+        return c;
+    };
+    for (const BoundPlaneConfig& c :
+         {with([](auto& c) { c.mu = 0; }), with([](auto& c) { c.mu = -1; }),
+          with([](auto& c) { c.max_angle_deg = 0; }), with([](auto& c) { c.max_angle_deg = 90; }),
+          with([](auto& c) { c.max_offset = -1e-3; }), with([](auto& c) { c.resolution = NAN; }),
+          with([](auto& c) { c.resolution = 1e-9; }), with([](auto& c) { c.max_gap = INFINITY; }),
+          with([](auto& c) { c.closing_radius = -1; }), with([](auto& c) { c.threads = -2; })})
+        EXPECT_EQ(code(g.cloud, g.result, c), ErrorCode::kInvalidParameter);
+}
+
+}  // namespace
+}  // namespace surfgrow
