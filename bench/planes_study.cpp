@@ -1,11 +1,11 @@
 // The study behind docs/planes-and-coverage.md: bound planes and coverage on the built-in
 // scenes, scored against their ground truth, for a few merge angles and offsets.
 // Run: build/bench/planes_study [scene ...]
-#include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "surfgrow/core/stopwatch.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/eval/segmentation_score.hpp"
 #include "surfgrow/planes/bound_planes.hpp"
@@ -17,10 +17,6 @@
 using namespace surfgrow;
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 void study(const std::string& name) {
     const scanner::SceneDescription desc = scanner::builtin_scene(name);
@@ -52,9 +48,9 @@ void study(const std::string& name) {
             cfg.max_angle_deg = v.angle;
             cfg.max_offset = v.offset_mm / 1000;
             cfg.max_gap = v.gap_mm / 1000;
-            const auto t0 = std::chrono::steady_clock::now();
+            const Stopwatch watch;
             const BoundPlanes planes = compute_bound_planes(cloud, grown, cfg);
-            const double secs = seconds_since(t0);
+            const double secs = watch.seconds();
             const std::vector<std::int32_t> found = plane_labels(planes, grown.labels);
             const eval::SegmentationScore f = eval::score_segmentation(cloud.labels, found);
             const eval::SegmentationScore p = eval::score_segmentation(pieces, found);
@@ -106,9 +102,9 @@ void study(const std::string& name) {
     for (const double blast_mm : {12.0, 24.0, 50.0}) {
         CoverageConfig cc;
         cc.blast_radius = blast_mm / 1000;
-        const auto t0 = std::chrono::steady_clock::now();
+        const Stopwatch watch;
         const CoveragePlan plan = plan_coverage(planes, grown, cc);
-        const double secs = seconds_since(t0);
+        const double secs = watch.seconds();
         double worst = 1;
         for (const PlaneCoverage& pc : plan.per_plane)
             if (pc.area > 0.01) worst = std::min(worst, pc.covered_fraction);

@@ -12,7 +12,6 @@
 // with STUDY_SURFACES the worst surfaces, STUDY_AT=x,y,z the points near a spot,
 // STUDY_UNREG_FACE=id a face's unregistered points, STUDY_DUMP=id a surface's ball).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -21,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "surfgrow/core/stopwatch.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/eval/evaluation.hpp"
 #include "surfgrow/eval/face_detection.hpp"
@@ -112,10 +112,9 @@ int main(int argc, char** argv) {
         for (const double offset : {0.0, 0.040}) {
             for (const int poses : {1, 3}) {
                 const PointCloud cloud = scan(scene, offset, poses, 1);
-                const auto t0 = std::chrono::steady_clock::now();
+                const Stopwatch watch;
                 const GrowResult r = grow_surfaces(cloud, config);
-                const double secs =
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                const double secs = watch.seconds();
                 eval::EvalReport e = eval::evaluate(cloud, r, scene.faces());
                 BoundPlaneConfig pc;
                 pc.mu = config.mu;

@@ -17,12 +17,6 @@ namespace surfgrow::cli {
 
 namespace {
 
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-    return s;
-}
-
 [[noreturn]] void usage_error(std::string_view option,
                               std::initializer_list<std::string_view> what) {
     std::string message = cat({option, ": "});

@@ -3,7 +3,6 @@
 // scans and writes points, time per stage, surfaces, registered % and data reduction per test as
 // CSV and plots.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -17,6 +16,7 @@
 #include "scan_job.hpp"
 #include "study_support.hpp"
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/core/stopwatch.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/scanner/fuse.hpp"
@@ -27,7 +27,6 @@ namespace surfgrow::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 constexpr int kMaxPoses = 64;
 constexpr std::uint64_t kMinSize = 1000;
@@ -112,7 +111,7 @@ void run(const StudyArgs& a) {
     for (std::string& c : result_columns(false)) table.header.push_back(std::move(c));
     for (std::string& c : timing_columns()) table.header.push_back(std::move(c));
     const bool progress = stderr_is_terminal();
-    const auto t0 = Clock::now();
+    const Stopwatch watch;
     std::size_t k = 0;
     PointCloud fused;
     for (std::size_t test = 0; test < sizes.size(); ++test) {
@@ -145,7 +144,7 @@ void run(const StudyArgs& a) {
         table.rows.push_back(std::move(row));
     }
     if (progress) std::fprintf(stderr, "\r%60s\r", "");
-    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    const double seconds = watch.seconds();
 
     const std::vector<std::pair<std::string, std::string>> csv_files = {
         {"study.csv", table.text()}};

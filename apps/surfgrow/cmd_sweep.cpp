@@ -2,7 +2,6 @@
 // (section 5.1, Fig. 5). Grows one cloud over a range of mu and a range of min_pts, the other held
 // fixed, and writes time, surfaces and registered % (and, with ground truth, normal error) per
 // value as CSV and plots, so that mu can be chosen from evidence.
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -14,6 +13,7 @@
 #include "grow_options.hpp"
 #include "study_support.hpp"
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/core/stopwatch.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/eval/evaluation.hpp"
@@ -25,7 +25,6 @@ namespace surfgrow::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 constexpr int kMaxMinPts = 100000;
 
@@ -173,7 +172,7 @@ void run(const SweepArgs& a) {
                              units.name}));
     }
 
-    const auto t0 = Clock::now();
+    const Stopwatch watch;
     std::size_t runs_total = 0, runs_done = 0;
     for (const Sweep& s : sweeps) runs_total += s.configs.size() * std::size_t(a.repeat);
     std::vector<std::pair<std::string, std::string>> csv_files;
@@ -181,7 +180,7 @@ void run(const SweepArgs& a) {
         csv_files.emplace_back(
             cat({s.name, ".csv"}),
             run_sweep(s, cloud, a.repeat, faces ? &*faces : nullptr, runs_done, runs_total).text());
-    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    const double seconds = watch.seconds();
 
     const std::string input_name = file.filename().string();
     std::vector<std::string> png_names;

@@ -1,12 +1,12 @@
 #include "scan_job.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/core/stopwatch.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/atomic_output.hpp"
 #include "surfgrow/io/ply.hpp"
@@ -24,12 +24,6 @@ namespace surfgrow::cli {
 namespace fs = std::filesystem;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 [[noreturn]] void invalid(const std::string& message) {
     throw Error(ErrorCode::kInvalidParameter, message);
@@ -161,7 +155,7 @@ ScanData run_scan(const ScanSettings& s) {
     d.scene = std::make_unique<scanner::Scene>(load_scene(s.scene));
     d.poses = load_poses(s.poses, d.scene->description().scanner);
 
-    auto t0 = Clock::now();
+    Stopwatch watch;
     const scanner::ScanSimulator simulator(*d.scene, spec, noise);
     for (scanner::SimulatedScan& sim : simulator.simulate(d.poses, s.seed))
         d.raws.push_back(std::move(sim.raw));
@@ -172,10 +166,9 @@ ScanData run_scan(const ScanSettings& s) {
                                   scanner::deg_to_rad(s.pose_error_deg), mix_seed(~s.seed, k));
         d.poses[k] = d.raws[k].pose;
     }
-    d.simulate_seconds = since(t0);
-    t0 = Clock::now();
+    d.simulate_seconds = watch.lap();
     d.cloud = scanner::fuse_scans(d.raws, d.fuse);
-    d.fuse_seconds = since(t0);
+    d.fuse_seconds = watch.lap();
     return d;
 }
 

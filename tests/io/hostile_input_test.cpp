@@ -95,9 +95,9 @@ std::vector<Sample> valid_samples() {
 // every value (the last one possibly cut short, which no reader can notice).
 std::size_t last_value_start(const std::string& bytes) {
     std::size_t end = bytes.size();
-    while (end > 0 && io::is_blank(bytes[end - 1])) --end;
+    while (end > 0 && is_blank(bytes[end - 1])) --end;
     std::size_t start = end;
-    while (start > 0 && !io::is_blank(bytes[start - 1])) --start;
+    while (start > 0 && !is_blank(bytes[start - 1])) --start;
     return start;
 }
 

@@ -4,23 +4,10 @@
 #include <algorithm>
 
 #include "surfgrow/core/geometry.hpp"
+#include "surfgrow/core/moments.hpp"
 #include "surfgrow/core/symmetric_eigen.hpp"
 
 namespace surfgrow {
-
-/// First and second moments of a point set, relative to a reference point (the home point).
-/// Relative sums keep float accumulation accurate: every offset is at most the radius.
-struct Moments {
-    double n = 0;
-    Vec3d sum = Vec3d::Zero();
-    Mat3d sum_sq = Mat3d::Zero();  ///< sum of d d^T (symmetric)
-
-    void add(const Vec3d& d) {
-        n += 1;
-        sum += d;
-        sum_sq += d * d.transpose();
-    }
-};
 
 /// The result of PCA on a neighbourhood.
 struct PlaneFit {

@@ -13,16 +13,6 @@ using detail::reserve_bulk;
 
 namespace {
 
-// The moments of a set about `from`, re-expressed about `to` (d' = d + (from - to)).
-Moments shifted(const Moments& m, const Vec3d& from, const Vec3d& to) {
-    const Vec3d t = from - to;
-    Moments out;
-    out.n = m.n;
-    out.sum = m.sum + m.n * t;
-    out.sum_sq = m.sum_sq + m.sum * t.transpose() + t * m.sum.transpose() + m.n * t * t.transpose();
-    return out;
-}
-
 // What the inner loop needs of a patch, in the pooling index's sorted order (contiguous reads).
 struct Candidate {
     Vec3d normal;
@@ -59,7 +49,7 @@ std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const Po
     for (std::size_t s = 0; s < index.size(); ++s) {
         const PoolablePatch& p = patches[orig[s]];
         cand[s] = {p.normal, p.centroid - index.origin(), std::sqrt(std::max(p.lambda_min, 0.0)),
-                   shifted(p.moments, p.home, index.origin())};
+                   moments_about(p.moments, p.home, index.origin())};
     }
     const double cos_max = std::cos(cfg.max_angle);
     const auto r2 = static_cast<float>(cfg.radius * cfg.radius);

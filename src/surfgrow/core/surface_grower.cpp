@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <chrono>
 #include <cmath>
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <numeric>
@@ -762,6 +762,341 @@ Orientation choose_orientation(const PointCloud& cloud, const GrowerConfig& cfg,
     return {OrientationSource::kUp, Vec3d::Zero()};
 }
 
+// ---- The stages of SurfaceGrower::grow, in the order it runs them.
+
+using ProgressReport = std::function<void(std::string_view, double)>;
+
+/// Where the sensor stood for each point, from the chosen orientation.
+SensorSight sight_of(const PointCloud& cloud, const Orientation& orient, const CubeIndex& index) {
+    SensorSight sight;
+    if (orient.source == OrientationSource::kScanOrigins) {
+        for (const Vec3d& o : cloud.scan_origins) sight.origins.push_back(index.to_local(o));
+        sight.scan_index = cloud.scan_index;
+        sight.original = index.original_indices();
+        sight.named = true;
+    } else if (orient.source != OrientationSource::kUp) {
+        sight.origins.push_back(index.to_local(orient.origin));
+        sight.named = orient.source == OrientationSource::kViewpoint;
+    }
+    return sight;
+}
+
+/// Stage 2a, the paper's loop: grows every slab, even colour then odd, and returns the surfaces
+/// in id order (slab order, then home order within a slab). Frees the scratch's growing buffers.
+BulkVector<GrownSurface> grow_slabs(const GrowContext& ctx, std::span<const Slab> slabs,
+                                    int threads, std::vector<Scratch>& scratch, GrowStats& st,
+                                    const ProgressReport& report) {
+    // Where each slab's surfaces lie: thread t's scratch.grown[begin, end).
+    struct GrownSpan {
+        std::size_t thread = 0, begin = 0, end = 0;
+    };
+    std::vector<GrownSpan> grown(slabs.size());
+    std::vector<SlabCounters> counters(slabs.size());
+    std::atomic<std::size_t> done{0};
+    for (int colour = 0; colour < 2; ++colour) {
+        for_each_slab_of_colour(ctx.index, slabs, colour, threads, [&](std::size_t s, int t) {
+            Scratch& sc = scratch[static_cast<std::size_t>(t)];
+            const std::size_t begin = sc.grown.size();
+            grow_slab(ctx, slabs[s], s, sc, sc.grown, counters[s]);
+            grown[s] = {static_cast<std::size_t>(t), begin, sc.grown.size()};
+            const std::size_t d = ++done;
+            if (t == 0) report("grow", double(d) / double(slabs.size()));
+        });
+    }
+    // Surface ids follow the home points' sorted order: slab order, then home order within a slab.
+    // Each slab's surfaces go straight to their final place, slabs in parallel.
+    std::vector<std::size_t> first(slabs.size() + 1, 0);
+    for (std::size_t s = 0; s < slabs.size(); ++s) {
+        first[s + 1] = first[s] + (grown[s].end - grown[s].begin);
+        st.homes_tried += counters[s].tried;
+        st.rejected_sparse += counters[s].sparse;
+        st.rejected_nonplanar += counters[s].nonplanar;
+        st.rejected_covered += counters[s].covered;
+        st.adapted_surfaces += counters[s].adapted;
+    }
+    BulkVector<GrownSurface> all(first.back());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 4)
+    for (std::size_t s = 0; s < slabs.size(); ++s) {
+        const std::span<const GrownSurface> mine(
+            scratch[grown[s].thread].grown.data() + grown[s].begin, grown[s].end - grown[s].begin);
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> order(mine.size());  // (home, k)
+        for (std::size_t k = 0; k < mine.size(); ++k)
+            order[k] = {mine[k].home, static_cast<std::uint32_t>(k)};
+        std::sort(order.begin(), order.end());
+        for (std::size_t r = 0; r < order.size(); ++r) all[first[s] + r] = mine[order[r].second];
+    }
+    // The growing's buffers (a slab's worth each) are not needed again: free them before the
+    // pooling, which is where small clouds reach their peak.
+    for (Scratch& sc : scratch) {
+        release(sc.grown);
+        release(sc.order);
+        release(sc.table);
+    }
+    return all;
+}
+
+/// Every label left after growing is the home of a kept surface (undone homes reset theirs):
+/// relabels through a home-to-surface table, read only at those homes. Called after the thread
+/// buffers are freed, so that the table does not add to the peak.
+void label_by_surface(std::span<std::int32_t> labels, std::span<const GrownSurface> all,
+                      int threads) {
+    BulkVector<std::int32_t> sid_of_home(labels.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t k = 0; k < all.size(); ++k)
+        sid_of_home[all[k].home] = static_cast<std::int32_t>(k);
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        if (labels[i] >= 0) labels[i] = sid_of_home[static_cast<std::size_t>(labels[i])];
+    }
+}
+
+/// The reported surfaces of the grown ones (statistics come later), with each one's home (sorted
+/// index) and registration tolerance (both sized like `all`).
+void surfaces_of(std::span<const GrownSurface> all, const CubeIndex& index, int threads,
+                 std::vector<Surface>& surfaces, std::span<std::uint32_t> home_of,
+                 std::span<double> tolerance) {
+    const std::size_t count = all.size();
+    reserve_bulk(surfaces, count);
+    surfaces.resize(count);
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t k = 0; k < count; ++k) {
+        const GrownSurface& g = all[k];
+        home_of[k] = g.home;
+        Surface& s = surfaces[k];
+        s.home = index.world_point(g.home);
+        s.centroid = s.home + g.fit.centroid;
+        s.normal = g.fit.normal;
+        s.eigenvalues = g.fit.eigenvalues;
+        s.radius = g.radius;
+        s.neighbours = g.neighbours;
+        s.tolerance = g.tolerance;
+        tolerance[k] = g.tolerance;
+    }
+}
+
+/// Stage 2b, normal refinement: pools each surface's normal with its neighbours' in the same
+/// plane, drops lone patches tilted across an edge (tolerance -1: they hold nothing) and releases
+/// members the refined planes no longer hold. Frees `all`.
+void refine_normals(const GrowerConfig& cfg, const CubeIndex& index, int threads,
+                    BulkVector<GrownSurface>& all, std::vector<Surface>& surfaces,
+                    std::vector<double>& tolerance, std::span<std::int32_t> labels, GrowStats& st) {
+    const std::size_t surface_count = surfaces.size();
+    BulkVector<PoolablePatch> patches(surface_count);
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t k = 0; k < surface_count; ++k) {
+        const Surface& s = surfaces[k];
+        patches[k] = {s.home, s.centroid, s.normal, s.eigenvalues[0], all[k].moments};
+    }
+    release(all);  // its moments are in the patches now: free them before pooling's own copy
+    PoolingConfig pc;
+    pc.radius = cfg.pooling_radius();
+    pc.max_angle = cfg.pool_angle_deg * M_PI / 180.0;
+    pc.min_offset = cfg.mu / 10;
+    pc.max_offset = cfg.mu / 2;
+    pc.threads = threads;
+    std::vector<std::uint8_t> lone;
+    const std::vector<Vec3d> pooled =
+        pool_normals(patches, pc, lone, cfg.plane_test == PlaneTest::kDisk ? kLoneNeighbours : 0);
+    release(patches);
+    for (std::size_t k = 0; k < surface_count; ++k) surfaces[k].normal = pooled[k];
+    // A patch in no plane with its neighbours is a fit tilted across an edge: its members go to
+    // the leftover pass, which gives each to the neighbouring surface it fits best.
+    if (!lone.empty()) {
+        std::uint64_t dropped = 0;
+        for (std::size_t k = 0; k < surface_count; ++k) {
+            if (!lone[k]) continue;
+            tolerance[k] = -1;  // holds nothing
+            ++dropped;
+        }
+        st.lone_surfaces = dropped;
+    }
+    // A reported plane must hold its members: release any the refined plane no longer fits
+    // (rare: points at the tolerance's edge); the leftover pass may re-attach them.
+    std::uint64_t released = 0;
+    const std::vector<LocalPlane> planes = local_planes(index, surfaces, tolerance);
+    const std::size_t n = labels.size();
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : released)
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::int32_t l = labels[i];
+        if (l < 0) continue;
+        if (!planes[static_cast<std::size_t>(l)].holds(
+                index.local_point(static_cast<std::uint32_t>(i)))) {
+            labels[i] = -1;
+            ++released;
+        }
+    }
+    st.released_by_refinement = released;
+}
+
+/// Stage 3: each point left unregistered goes to the best-fitting neighbouring surface.
+void attach_leftovers(const GrowContext& ctx, std::span<const Slab> slabs,
+                      const std::vector<Surface>& surfaces, std::span<const double> tolerance,
+                      int threads, std::vector<Scratch>& scratch, std::span<std::int32_t> labels) {
+    std::vector<std::vector<std::pair<std::uint32_t, std::int32_t>>> attach(slabs.size());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+    for (std::size_t s = 0; s < slabs.size(); ++s) {
+        attach_slab(ctx, slabs[s], surfaces, tolerance,
+                    scratch[static_cast<std::size_t>(omp_get_thread_num())], attach[s]);
+    }
+    for (const auto& list : attach)
+        for (const auto& [i, sid] : list) labels[i] = sid;
+}
+
+/// Stage 4a: each surface's members (count, bounds, mean residual, largest distance), in the
+/// index's float frame. Each thread owns a range of surface ids and visits their members in point
+/// order, so every residual sum is added up in the same order whatever the thread count. Returns
+/// the points registered.
+std::uint64_t member_statistics(const CubeIndex& index, std::span<const std::int32_t> labels,
+                                std::span<const double> tolerance, int threads,
+                                std::vector<Surface>& surfaces) {
+    const std::size_t surface_count = surfaces.size();
+    const std::size_t n = labels.size();
+    const std::vector<LocalPlane> planes = local_planes(index, surfaces, tolerance);
+    std::vector<Vec3f> lo(surface_count, Vec3f::Constant(std::numeric_limits<float>::max()));
+    std::vector<Vec3f> hi(surface_count, Vec3f::Constant(std::numeric_limits<float>::lowest()));
+    std::vector<double> residual_sum(surface_count, 0.0);
+    std::vector<float> max_distance(surface_count, 0.0f);
+#pragma omp parallel num_threads(threads)
+    {
+        const auto parts = static_cast<std::size_t>(omp_get_num_threads());
+        const auto part = static_cast<std::size_t>(omp_get_thread_num());
+        const auto from = static_cast<std::uint32_t>(surface_count * part / parts);
+        const auto count = static_cast<std::uint32_t>(surface_count * (part + 1) / parts) - from;
+        for (std::size_t i = 0; i < n; ++i) {
+            // One unsigned compare: also false for the unregistered (-1).
+            const std::uint32_t k = static_cast<std::uint32_t>(labels[i]) - from;
+            if (k >= count) continue;
+            const std::size_t s = from + k;
+            const Vec3f p = index.local_point(static_cast<std::uint32_t>(i));
+            ++surfaces[s].point_count;
+            lo[s] = lo[s].cwiseMin(p);
+            hi[s] = hi[s].cwiseMax(p);
+            const float d = planes[s].distance(p);
+            residual_sum[s] += static_cast<double>(d);
+            max_distance[s] = std::max(max_distance[s], d);
+        }
+    }
+    std::uint64_t registered = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : registered)
+    for (std::size_t k = 0; k < surface_count; ++k) {
+        Surface& s = surfaces[k];
+        registered += s.point_count;
+        if (s.point_count == 0) continue;
+        s.mean_residual = residual_sum[k] / s.point_count;
+        // The tolerance reported bounds every member, those the leftover pass gave it included.
+        s.tolerance = std::max(s.tolerance, static_cast<double>(max_distance[k]));
+        s.bounds.add(index.origin() + lo[k].cast<double>());
+        s.bounds.add(index.origin() + hi[k].cast<double>());
+    }
+    return registered;
+}
+
+/// Marks the input points that are not in the index (invalid, cropped) in result labels.
+constexpr std::int32_t kNotIndexed = -2;
+
+/// Stage 4b: registration by range band, over the input in its order (integer counts: any split
+/// of the work gives the same totals); the not-indexed mark becomes the unregistered label.
+std::vector<RangeBand> range_bands(const PointCloud& cloud, const Orientation& orient,
+                                   bool range_known, double band_width, int threads,
+                                   std::span<std::int32_t> input_labels) {
+    const bool per_scan = orient.source == OrientationSource::kScanOrigins;
+    std::vector<Vec3f> origins;  // relative to the cloud's offset: one, or one per scan
+    if (per_scan)
+        for (const Vec3d& o : cloud.scan_origins) origins.push_back(o.cast<float>());
+    else
+        origins.push_back(orient.origin.cast<float>());
+    const auto inv_band = static_cast<float>(1.0 / band_width);
+    const std::size_t n_in = input_labels.size();
+    std::vector<std::vector<RangeBand>> thread_bands(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+    {
+        std::vector<RangeBand>& mine = thread_bands[static_cast<std::size_t>(omp_get_thread_num())];
+        if (range_known) mine.resize(kMaxRangeBands);
+#pragma omp for schedule(static)
+        for (std::size_t j = 0; j < n_in; ++j) {
+            std::int32_t& l = input_labels[j];
+            if (l == kNotIndexed) {
+                l = -1;
+                continue;
+            }
+            if (!range_known) continue;
+            std::uint32_t o = 0;
+            if (per_scan) {
+                o = cloud.scan_index[j];
+                if (o >= origins.size()) o = 0;
+            }
+            const float r = (cloud.points[j] - origins[o]).norm();
+            const auto band =
+                static_cast<std::size_t>(std::min(r * inv_band, float(kMaxRangeBands - 1)));
+            ++mine[band].points;
+            mine[band].registered += l >= 0 ? 1 : 0;
+        }
+    }
+    std::vector<RangeBand> bands;
+    if (!range_known) return bands;
+    bands.resize(kMaxRangeBands);
+    for (const auto& mine : thread_bands) {
+        for (std::size_t b = 0; b < mine.size(); ++b) {
+            bands[b].points += mine[b].points;
+            bands[b].registered += mine[b].registered;
+        }
+    }
+    while (!bands.empty() && bands.back().points == 0) bands.pop_back();
+    for (std::size_t b = 0; b < bands.size(); ++b) {
+        bands[b].from = double(b) * band_width;
+        bands[b].to = double(b + 1) * band_width;
+    }
+    if (bands.size() == kMaxRangeBands)  // the last band is open-ended
+        bands.back().to = std::numeric_limits<double>::infinity();
+    return bands;
+}
+
+/// Stage 4c: every normal faces its home point's sensor (or +z when none is known).
+void orient_normals(const PointCloud& cloud, const Orientation& orient,
+                    std::span<const std::uint32_t> original, std::span<const std::uint32_t> home_of,
+                    int threads, std::vector<Surface>& surfaces) {
+    const bool per_scan = orient.source == OrientationSource::kScanOrigins;
+    auto origin_of = [&](std::uint32_t sorted) -> Vec3d {
+        if (per_scan) {
+            const std::uint32_t scan = cloud.scan_index[original[sorted]];
+            if (scan < cloud.scan_origins.size()) return cloud.scan_origins[scan];
+        }
+        return orient.origin;
+    };
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t k = 0; k < surfaces.size(); ++k) {
+        Surface& s = surfaces[k];
+        const Vec3d towards = orient.source == OrientationSource::kUp
+                                  ? Vec3d::UnitZ()
+                                  : Vec3d(origin_of(home_of[k]) - s.home);
+        if (s.normal.dot(towards) < 0) s.normal = -s.normal;
+    }
+}
+
+/// Stage 4d: best-fit registration can take every member of a surface; such surfaces are dropped
+/// (ids stay in home order) and the labels renumbered. Returns how many were dropped.
+std::uint64_t drop_empty_surfaces(int threads, std::vector<Surface>& surfaces,
+                                  std::span<std::int32_t> input_labels) {
+    const std::size_t count = surfaces.size();
+    const auto kept = static_cast<std::size_t>(std::count_if(
+        surfaces.begin(), surfaces.end(), [](const Surface& s) { return s.point_count > 0; }));
+    if (kept == count) return 0;
+    std::vector<std::int32_t> new_id(count, -1);
+    std::size_t next = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+        if (surfaces[k].point_count == 0) continue;
+        new_id[k] = static_cast<std::int32_t>(next);
+        surfaces[next++] = surfaces[k];
+    }
+    surfaces.resize(kept);
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t j = 0; j < input_labels.size(); ++j) {
+        std::int32_t& l = input_labels[j];
+        if (l >= 0) l = new_id[static_cast<std::size_t>(l)];
+    }
+    return count - kept;
+}
+
 }  // namespace
 
 SurfaceGrower::SurfaceGrower(GrowerConfig config) : config_(std::move(config)) {
@@ -795,7 +1130,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud, const GrowIndex& grow_in
                     cat({"the cube index was built over ", std::to_string(grow_index.points),
                          " points, not over this cloud of ", std::to_string(n_in)}));
     st.points_in = n_in;
-    auto report = [&](std::string_view stage, double f) {
+    const ProgressReport report = [&](std::string_view stage, double f) {
         if (cfg.progress) cfg.progress(stage, f);
     };
 
@@ -809,7 +1144,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud, const GrowIndex& grow_in
     report("index", 1.0);
     Stopwatch stage;
 
-    // --- Stage 2: growing, slab by slab, even colour then odd.
+    // --- Stage 2: growing, slab by slab, even colour then odd; then normal refinement.
     const int reach = static_cast<int>(std::ceil(cfg.max_radius() / index.cube_size()));
     const std::size_t target = std::clamp<std::size_t>(n / 256, 4096, 65536);
     const std::vector<Slab> slabs = partition_slabs(index, 2 * reach, target);
@@ -817,22 +1152,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud, const GrowIndex& grow_in
     // Best-fit registration keeps each registered point's distance to its plane.
     BulkVector<float> distance(cfg.plane_test == PlaneTest::kDisk ? n : 0);
     const Orientation orient = choose_orientation(cloud, cfg, index.bounds());
-    SensorSight sight;
-    if (orient.source == OrientationSource::kScanOrigins) {
-        for (const Vec3d& o : cloud.scan_origins) sight.origins.push_back(index.to_local(o));
-        sight.scan_index = cloud.scan_index;
-        sight.original = index.original_indices();
-        sight.named = true;
-    } else if (orient.source != OrientationSource::kUp) {
-        sight.origins.push_back(index.to_local(orient.origin));
-        sight.named = orient.source == OrientationSource::kViewpoint;
-    }
-    // Where each slab's surfaces lie: thread t's scratch.grown[begin, end).
-    struct GrownSpan {
-        std::size_t thread = 0, begin = 0, end = 0;
-    };
-    std::vector<GrownSpan> grown(slabs.size());
-    std::vector<SlabCounters> counters(slabs.size());
+    const SensorSight sight = sight_of(cloud, orient, index);
     std::vector<Scratch> scratch(static_cast<std::size_t>(threads));
     // About one surface per 30 points in scans at the paper's mu; a buffer that fills up doubles.
     // Kept under 2 MiB for small clouds, where a huge page would mostly stay empty.
@@ -845,291 +1165,44 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud, const GrowIndex& grow_in
     st.layer_band = layers.band();
     st.layer_sigma = layers.sigmas();
     const GrowContext ctx{index, cfg, labels, distance, sight, noise, layers};
-    std::atomic<std::size_t> done{0};
-    for (int colour = 0; colour < 2; ++colour) {
-        for_each_slab_of_colour(index, slabs, colour, threads, [&](std::size_t s, int t) {
-            Scratch& sc = scratch[static_cast<std::size_t>(t)];
-            const std::size_t begin = sc.grown.size();
-            grow_slab(ctx, slabs[s], s, sc, sc.grown, counters[s]);
-            grown[s] = {static_cast<std::size_t>(t), begin, sc.grown.size()};
-            const std::size_t d = ++done;
-            if (t == 0) report("grow", double(d) / double(slabs.size()));
-        });
-    }
-    // Surface ids follow the home points' sorted order: slab order, then home order within a slab.
-    // Each slab's surfaces go straight to their final place, slabs in parallel.
-    std::vector<std::size_t> first(slabs.size() + 1, 0);
-    for (std::size_t s = 0; s < slabs.size(); ++s) {
-        first[s + 1] = first[s] + (grown[s].end - grown[s].begin);
-        st.homes_tried += counters[s].tried;
-        st.rejected_sparse += counters[s].sparse;
-        st.rejected_nonplanar += counters[s].nonplanar;
-        st.rejected_covered += counters[s].covered;
-        st.adapted_surfaces += counters[s].adapted;
-    }
-    BulkVector<GrownSurface> all(first.back());
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 4)
-    for (std::size_t s = 0; s < slabs.size(); ++s) {
-        const std::span<const GrownSurface> mine(
-            scratch[grown[s].thread].grown.data() + grown[s].begin, grown[s].end - grown[s].begin);
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> order(mine.size());  // (home, k)
-        for (std::size_t k = 0; k < mine.size(); ++k)
-            order[k] = {mine[k].home, static_cast<std::uint32_t>(k)};
-        std::sort(order.begin(), order.end());
-        for (std::size_t r = 0; r < order.size(); ++r) all[first[s] + r] = mine[order[r].second];
-    }
-    // The growing's buffers (a slab's worth each) are not needed again: free them before the
-    // pooling below, which is where small clouds reach their peak.
-    for (Scratch& sc : scratch) {
-        release(sc.grown);
-        release(sc.order);
-        release(sc.table);
-    }
-    // Every label left after growing is the home of a kept surface (undone homes reset theirs):
-    // relabel through a home-to-surface table, read only at those homes. Allocated after the
-    // thread buffers are freed, so that it does not add to the peak.
-    BulkVector<std::int32_t> sid_of_home(n);
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::size_t k = 0; k < all.size(); ++k)
-        sid_of_home[all[k].home] = static_cast<std::int32_t>(k);
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-        if (labels[i] >= 0) labels[i] = sid_of_home[static_cast<std::size_t>(labels[i])];
-    }
-    release(sid_of_home);
+    BulkVector<GrownSurface> all = grow_slabs(ctx, slabs, threads, scratch, st, report);
+    label_by_surface(labels, all, threads);
     const std::size_t surface_count = all.size();
     std::vector<std::uint32_t> home_of(surface_count);  // sorted index of each surface's home
-    reserve_bulk(result.surfaces, surface_count);
-    result.surfaces.resize(surface_count);
     std::vector<double> tolerance(surface_count);
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::size_t k = 0; k < surface_count; ++k) {
-        const GrownSurface& g = all[k];
-        home_of[k] = g.home;
-        Surface& s = result.surfaces[k];
-        s.home = index.world_point(g.home);
-        s.centroid = s.home + g.fit.centroid;
-        s.normal = g.fit.normal;
-        s.eigenvalues = g.fit.eigenvalues;
-        s.radius = g.radius;
-        s.neighbours = g.neighbours;
-        s.tolerance = g.tolerance;
-        tolerance[k] = g.tolerance;
-    }
+    surfaces_of(all, index, threads, result.surfaces, home_of, tolerance);
     st.surfaces = surface_count;
-    if (cfg.pool_angle_deg > 0 && surface_count > 0) {
-        BulkVector<PoolablePatch> patches(surface_count);
-#pragma omp parallel for num_threads(threads) schedule(static)
-        for (std::size_t k = 0; k < surface_count; ++k) {
-            const Surface& s = result.surfaces[k];
-            patches[k] = {s.home, s.centroid, s.normal, s.eigenvalues[0], all[k].moments};
-        }
-        release(all);  // its moments are in the patches now: free them before pooling's own copy
-        PoolingConfig pc;
-        pc.radius = cfg.pooling_radius();
-        pc.max_angle = cfg.pool_angle_deg * M_PI / 180.0;
-        pc.min_offset = cfg.mu / 10;
-        pc.max_offset = cfg.mu / 2;
-        pc.threads = threads;
-        std::vector<std::uint8_t> lone;
-        const std::vector<Vec3d> pooled = pool_normals(
-            patches, pc, lone, cfg.plane_test == PlaneTest::kDisk ? kLoneNeighbours : 0);
-        release(patches);
-        for (std::size_t k = 0; k < surface_count; ++k) result.surfaces[k].normal = pooled[k];
-        // A patch in no plane with its neighbours is a fit tilted across an edge: its members
-        // go to the leftover pass, which gives each to the neighbouring surface it fits best.
-        if (!lone.empty()) {
-            std::uint64_t dropped = 0;
-            for (std::size_t k = 0; k < surface_count; ++k) {
-                if (!lone[k]) continue;
-                tolerance[k] = -1;  // holds nothing
-                ++dropped;
-            }
-            st.lone_surfaces = dropped;
-        }
-        // A reported plane must hold its members: release any the refined plane no longer fits
-        // (rare: points at the tolerance's edge); the leftover pass may re-attach them.
-        std::uint64_t released = 0;
-        std::vector<LocalPlane> planes = local_planes(index, result.surfaces, tolerance);
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : released)
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::int32_t l = labels[i];
-            if (l < 0) continue;
-            if (!planes[static_cast<std::size_t>(l)].holds(
-                    index.local_point(static_cast<std::uint32_t>(i)))) {
-                labels[i] = -1;
-                ++released;
-            }
-        }
-        st.released_by_refinement = released;
-    }
+    if (cfg.pool_angle_deg > 0 && surface_count > 0)
+        refine_normals(cfg, index, threads, all, result.surfaces, tolerance, labels, st);
     release(all);
     st.seconds.grow = stage.lap();
     for (const std::int32_t l : labels) st.registered_grown += l >= 0 ? 1 : 0;
 
     // --- Stage 3: attach leftovers to the best-fitting neighbouring surface.
-    if (cfg.attach_leftovers && surface_count > 0) {
-        std::vector<std::vector<std::pair<std::uint32_t, std::int32_t>>> attach(slabs.size());
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-        for (std::size_t s = 0; s < slabs.size(); ++s) {
-            attach_slab(ctx, slabs[s], result.surfaces, tolerance,
-                        scratch[static_cast<std::size_t>(omp_get_thread_num())], attach[s]);
-        }
-        for (const auto& list : attach)
-            for (const auto& [i, sid] : list) labels[i] = sid;
-    }
+    if (cfg.attach_leftovers && surface_count > 0)
+        attach_leftovers(ctx, slabs, result.surfaces, tolerance, threads, scratch, labels);
     st.seconds.attach = stage.lap();
     report("attach", 1.0);
 
-    // --- Stage 4: member statistics, orientation, labels in input order, range bands.
-    const auto orig = index.original_indices();
+    // --- Stage 4: member statistics, labels in input order, range bands, orientation.
     release(distance);
     st.orientation = orient.source;
-    const bool per_scan = orient.source == OrientationSource::kScanOrigins;
     st.range_known = orient.source != OrientationSource::kUp;
     st.range_origin = orient.origin;
     // Labels in input order. Points not in the index (invalid, cropped) are marked first, so
-    // that the range bands below can stream the input in its own order and skip them.
-    constexpr std::int32_t kNotIndexed = -2;
+    // that the range bands can stream the input in its own order and skip them.
+    const auto orig = index.original_indices();
     reserve_bulk(result.labels, n_in);
     result.labels.assign(n_in, kNotIndexed);
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t i = 0; i < n; ++i) result.labels[orig[i]] = labels[i];
-
-    // Per-surface statistics, in the index's float frame: members, bounds, residual sum. Each
-    // thread owns a range of surface ids and visits their members in point order, so every
-    // residual sum is added up in the same order whatever the thread count.
-    const std::vector<LocalPlane> planes = local_planes(index, result.surfaces, tolerance);
-    std::vector<Vec3f> lo(surface_count, Vec3f::Constant(std::numeric_limits<float>::max()));
-    std::vector<Vec3f> hi(surface_count, Vec3f::Constant(std::numeric_limits<float>::lowest()));
-    std::vector<double> residual_sum(surface_count, 0.0);
-    std::vector<float> max_distance(surface_count, 0.0f);
-#pragma omp parallel num_threads(threads)
-    {
-        const auto parts = static_cast<std::size_t>(omp_get_num_threads());
-        const auto part = static_cast<std::size_t>(omp_get_thread_num());
-        const auto from = static_cast<std::uint32_t>(surface_count * part / parts);
-        const auto count = static_cast<std::uint32_t>(surface_count * (part + 1) / parts) - from;
-        for (std::size_t i = 0; i < n; ++i) {
-            // One unsigned compare: also false for the unregistered (-1).
-            const std::uint32_t k = static_cast<std::uint32_t>(labels[i]) - from;
-            if (k >= count) continue;
-            const std::size_t s = from + k;
-            const Vec3f p = index.local_point(static_cast<std::uint32_t>(i));
-            ++result.surfaces[s].point_count;
-            lo[s] = lo[s].cwiseMin(p);
-            hi[s] = hi[s].cwiseMax(p);
-            const float d = planes[s].distance(p);
-            residual_sum[s] += static_cast<double>(d);
-            max_distance[s] = std::max(max_distance[s], d);
-        }
-    }
-
-    // Registration by range band, over the input in its order (integer counts: any split of the
-    // work gives the same totals); the not-indexed mark becomes the unregistered label.
-    std::vector<RangeBand> bands;
-    std::vector<Vec3f> origins;  // relative to the cloud's offset: one, or one per scan
-    if (per_scan)
-        for (const Vec3d& o : cloud.scan_origins) origins.push_back(o.cast<float>());
-    else
-        origins.push_back(orient.origin.cast<float>());
-    const auto inv_band = static_cast<float>(1.0 / cfg.range_band);
-    std::vector<std::vector<RangeBand>> thread_bands(static_cast<std::size_t>(threads));
-#pragma omp parallel num_threads(threads)
-    {
-        std::vector<RangeBand>& mine = thread_bands[static_cast<std::size_t>(omp_get_thread_num())];
-        if (st.range_known) mine.resize(kMaxRangeBands);
-#pragma omp for schedule(static)
-        for (std::size_t j = 0; j < n_in; ++j) {
-            std::int32_t& l = result.labels[j];
-            if (l == kNotIndexed) {
-                l = -1;
-                continue;
-            }
-            if (!st.range_known) continue;
-            std::uint32_t o = 0;
-            if (per_scan) {
-                o = cloud.scan_index[j];
-                if (o >= origins.size()) o = 0;
-            }
-            const float r = (cloud.points[j] - origins[o]).norm();
-            const auto band =
-                static_cast<std::size_t>(std::min(r * inv_band, float(kMaxRangeBands - 1)));
-            ++mine[band].points;
-            mine[band].registered += l >= 0 ? 1 : 0;
-        }
-    }
-    if (st.range_known) {
-        bands.resize(kMaxRangeBands);
-        for (const auto& mine : thread_bands) {
-            for (std::size_t b = 0; b < mine.size(); ++b) {
-                bands[b].points += mine[b].points;
-                bands[b].registered += mine[b].registered;
-            }
-        }
-        while (!bands.empty() && bands.back().points == 0) bands.pop_back();
-    }
-    std::uint64_t registered = 0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : registered)
-    for (std::size_t k = 0; k < surface_count; ++k) {
-        Surface& s = result.surfaces[k];
-        registered += s.point_count;
-        if (s.point_count == 0) continue;
-        s.mean_residual = residual_sum[k] / s.point_count;
-        // The tolerance reported bounds every member, those the leftover pass gave it included.
-        s.tolerance = std::max(s.tolerance, static_cast<double>(max_distance[k]));
-        s.bounds.add(index.origin() + lo[k].cast<double>());
-        s.bounds.add(index.origin() + hi[k].cast<double>());
-    }
-    st.registered = registered;
+    st.registered = member_statistics(index, labels, tolerance, threads, result.surfaces);
     st.noise_points = st.valid_points - st.registered;
-
-    auto origin_of = [&](std::uint32_t sorted) -> Vec3d {
-        if (per_scan) {
-            const std::uint32_t scan = cloud.scan_index[orig[sorted]];
-            if (scan < cloud.scan_origins.size()) return cloud.scan_origins[scan];
-        }
-        return orient.origin;
-    };
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::size_t k = 0; k < surface_count; ++k) {
-        Surface& s = result.surfaces[k];
-        const Vec3d towards = orient.source == OrientationSource::kUp
-                                  ? Vec3d::UnitZ()
-                                  : Vec3d(origin_of(home_of[k]) - s.home);
-        if (s.normal.dot(towards) < 0) s.normal = -s.normal;
-    }
-    if (st.range_known) {
-        for (std::size_t b = 0; b < bands.size(); ++b) {
-            bands[b].from = double(b) * cfg.range_band;
-            bands[b].to = double(b + 1) * cfg.range_band;
-        }
-        if (bands.size() == kMaxRangeBands)  // the last band is open-ended
-            bands.back().to = std::numeric_limits<double>::infinity();
-        st.range_bands = std::move(bands);
-    }
-    // Best-fit registration can take every member of a surface: such surfaces are dropped (ids
-    // stay in home order).
-    const std::size_t kept =
-        static_cast<std::size_t>(std::count_if(result.surfaces.begin(), result.surfaces.end(),
-                                               [](const Surface& s) { return s.point_count > 0; }));
-    if (kept < surface_count) {
-        std::vector<std::int32_t> new_id(surface_count, -1);
-        std::size_t next = 0;
-        for (std::size_t k = 0; k < surface_count; ++k) {
-            if (result.surfaces[k].point_count == 0) continue;
-            new_id[k] = static_cast<std::int32_t>(next);
-            result.surfaces[next++] = result.surfaces[k];
-        }
-        result.surfaces.resize(kept);
-        st.dropped_surfaces = surface_count - kept;
-#pragma omp parallel for num_threads(threads) schedule(static)
-        for (std::size_t j = 0; j < n_in; ++j) {
-            std::int32_t& l = result.labels[j];
-            if (l >= 0) l = new_id[static_cast<std::size_t>(l)];
-        }
-        st.surfaces = kept;
-    }
+    st.range_bands =
+        range_bands(cloud, orient, st.range_known, cfg.range_band, threads, result.labels);
+    orient_normals(cloud, orient, orig, home_of, threads, result.surfaces);
+    st.dropped_surfaces = drop_empty_surfaces(threads, result.surfaces, result.labels);
+    st.surfaces = result.surfaces.size();
     st.seconds.finish = stage.lap();
     report("finish", 1.0);
     return result;

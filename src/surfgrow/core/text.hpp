@@ -1,4 +1,4 @@
-// Building user-facing messages without chains of operator+.
+// Text helpers: building user-facing messages without chains of operator+, trimming blanks.
 #pragma once
 
 #include <charconv>
@@ -17,6 +17,18 @@ namespace surfgrow {
     out.reserve(size);
     for (auto p : parts) out.append(p);
     return out;
+}
+
+/// A blank: space, tab, or a line or page break.
+[[nodiscard]] constexpr bool is_blank(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
+}
+
+/// `s` without leading and trailing blanks.
+[[nodiscard]] constexpr std::string_view trim(std::string_view s) {
+    while (!s.empty() && is_blank(s.front())) s.remove_prefix(1);
+    while (!s.empty() && is_blank(s.back())) s.remove_suffix(1);
+    return s;
 }
 
 /// A number as a person would write it: shortest round-trip form ("0.012", "1e+30").

@@ -13,12 +13,6 @@ namespace surfgrow::eval {
 
 namespace {
 
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-    return s;
-}
-
 std::string known_names() {
     std::string out;
     for (const std::string_view n : metric_names()) {

@@ -7,14 +7,6 @@
 
 namespace surfgrow::io {
 
-std::string_view trim(std::string_view s) {
-    std::size_t b = 0;
-    std::size_t e = s.size();
-    while (b < e && is_blank(s[b])) ++b;
-    while (e > b && is_blank(s[e - 1])) --e;
-    return s.substr(b, e - b);
-}
-
 bool parse_double(std::string_view token, double& out) {
     const char* b = token.data();
     const char* const e = b + token.size();

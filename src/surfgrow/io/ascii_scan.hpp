@@ -6,14 +6,9 @@
 #include <string_view>
 #include <vector>
 
+#include "surfgrow/core/text.hpp"  // is_blank, trim
+
 namespace surfgrow::io {
-
-[[nodiscard]] constexpr bool is_blank(char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
-}
-
-/// `s` without leading and trailing blanks.
-[[nodiscard]] std::string_view trim(std::string_view s);
 
 /// Parses a whole token as a double (std::from_chars, so independent of the locale). Accepts a
 /// leading '+' and nan/inf in any case; values beyond double's range become +-inf or 0, as with

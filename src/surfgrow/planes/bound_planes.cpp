@@ -10,6 +10,7 @@
 
 #include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/core/moments.hpp"
 #include "surfgrow/core/symmetric_eigen.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/core/threads.hpp"
@@ -30,23 +31,6 @@ constexpr int kRefitPasses = 5;
 [[noreturn]] void bad(std::initializer_list<std::string_view> what) {
     throw Error(ErrorCode::kInvalidParameter, cat(what));
 }
-
-// Count, mean and scatter matrix about the mean: merging two sets is exact and stable (Chan et
-// al.), so a region's plane is the least-squares fit of the union of its patches' points.
-struct CentredMoments {
-    double n = 0;
-    Vec3d mean = Vec3d::Zero();
-    Mat3d scatter = Mat3d::Zero();
-
-    void merge(const CentredMoments& o) {
-        if (o.n == 0) return;
-        const double total = n + o.n;
-        const Vec3d delta = o.mean - mean;
-        scatter += o.scatter + (n * o.n / total) * delta * delta.transpose();
-        mean += delta * (o.n / total);
-        n = total;
-    }
-};
 
 struct Fit {
     Vec3d normal = Vec3d::UnitZ();
@@ -92,31 +76,14 @@ CentredMoments inlier_moments(std::span<const Vec3d> points, const Vec3d& normal
     const double sigma = scratch.empty() ? 0.0 : 1.4826 * *mid;
     // Points exactly on a plane still scatter by the float coordinates' rounding: keep them.
     const double limit = std::max(k * sigma, 1e-6 * floor_scale);
-    double n = 0, sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+    Moments about_centroid;
     for (const Vec3d& p : points) {
-        const double dx = p.x() - centroid.x(), dy = p.y() - centroid.y(),
-                     dz = p.z() - centroid.z();
-        if (std::abs(normal.x() * dx + normal.y() * dy + normal.z() * dz) > limit) continue;
-        n += 1;
-        sx += dx;
-        sy += dy;
-        sz += dz;
-        sxx += dx * dx;
-        sxy += dx * dy;
-        sxz += dx * dz;
-        syy += dy * dy;
-        syz += dy * dz;
-        szz += dz * dz;
+        const Vec3d d = p - centroid;
+        if (std::abs(normal.dot(d)) > limit) continue;
+        about_centroid.add(d);
     }
-    CentredMoments m;
-    if (n < 3) return m;
-    const Vec3d sum(sx, sy, sz);
-    Mat3d sq;
-    sq << sxx, sxy, sxz, sxy, syy, syz, sxz, syz, szz;
-    m.n = n;
-    m.mean = centroid + sum / n;
-    m.scatter = sq - sum * sum.transpose() / n;
-    return m;
+    if (about_centroid.n < 3) return {};
+    return CentredMoments::of(about_centroid, centroid);
 }
 
 // Member points of each surface, input order: CSR offsets and indices.
@@ -307,40 +274,11 @@ Vec3d principal_axis(const Vec3d& n, const Mat3d& scatter) {
     return u[k] < 0 ? Vec3d(-u) : u;
 }
 
-}  // namespace
+// ---- The stages of compute_bound_planes, in the order it runs them.
 
-void validate(const BoundPlaneConfig& c) {
-    if (!(c.mu > 0) || !std::isfinite(c.mu)) bad({"mu must be positive, got ", num(c.mu)});
-    if (!(c.max_angle_deg > 0 && c.max_angle_deg < 90))
-        bad({"plane angle must be between 0 and 90 degrees, got ", num(c.max_angle_deg)});
-    const std::pair<const char*, double> lengths[] = {{"plane offset", c.max_offset},
-                                                      {"adjacency distance", c.adjacency},
-                                                      {"boundary resolution", c.resolution},
-                                                      {"closing radius", c.closing_radius},
-                                                      {"simplify tolerance", c.simplify_tolerance}};
-    for (const auto& [name, v] : lengths)
-        if (!(v >= 0) || !std::isfinite(v)) bad({name, " must be >= 0 (0: default), got ", num(v)});
-    if (!std::isfinite(c.max_gap)) bad({"max gap must be finite, got ", num(c.max_gap)});
-    if (c.resolution > 0 && c.resolution < c.mu * 1e-3)
-        bad({"boundary resolution ", num(c.resolution), " is below mu / 1000"});
-    if (c.threads < 0) bad({"threads must be >= 0, got ", std::to_string(c.threads)});
-}
-
-std::vector<std::int32_t> plane_labels(const BoundPlanes& planes,
-                                       std::span<const std::int32_t> labels) {
-    std::vector<std::int32_t> out(labels.size(), -1);
-    for (std::size_t i = 0; i < labels.size(); ++i) {
-        const std::int32_t l = labels[i];
-        if (l >= 0 && static_cast<std::size_t>(l) < planes.plane_of_patch.size())
-            out[i] = planes.plane_of_patch[static_cast<std::size_t>(l)];
-    }
-    return out;
-}
-
-BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surface> surfaces,
-                                 std::span<const std::int32_t> labels,
-                                 const BoundPlaneConfig& config) {
-    validate(config);
+// Throws Error(kInvalidParameter) for labels or surfaces that are not a grow result of `cloud`.
+void check_grow_result(const PointCloud& cloud, std::span<const Surface> surfaces,
+                       std::span<const std::int32_t> labels) {
     if (labels.size() != cloud.size())
         bad({"bound planes: ", std::to_string(labels.size()), " labels for ",
              std::to_string(cloud.size()), " points"});
@@ -357,67 +295,81 @@ BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surfac
             bad({"bound planes: surface ", std::to_string(s),
                  " has a non-unit normal, a non-finite position or no radius"});
     }
-    BoundPlanes out;
-    BoundPlaneConfig& cfg = out.config;
-    cfg = config;
-    const int threads = resolve_threads(cfg.threads);
-    const std::size_t ns = surfaces.size();
-    out.plane_of_patch.assign(ns, -1);
-    out.stats.patches = ns;
+}
 
-    // Member points and their moments per patch.
-    const Members members = collect_members(cloud.points, labels, ns);
-    std::vector<CentredMoments> moments(ns);
-    std::vector<std::uint8_t> used(ns, 0);
+// The moments of each patch's member points (accumulated about its home point); `used` marks the
+// patches with members. Returns the median patch thickness sqrt(lambda_min): the cloud's noise.
+double patch_moments(std::span<const Vec3f> points, std::span<const Surface> surfaces,
+                     const Members& members, std::vector<CentredMoments>& moments,
+                     std::vector<std::uint8_t>& used) {
     std::vector<double> thickness;
-    for (std::size_t s = 0; s < ns; ++s) {
+    for (std::size_t s = 0; s < surfaces.size(); ++s) {
         const auto idx = members.of(s);
         if (idx.empty()) continue;
         used[s] = 1;
         thickness.push_back(std::sqrt(std::max(surfaces[s].eigenvalues[0], 0.0)));
-        Vec3d sum = Vec3d::Zero();
-        Mat3d sq = Mat3d::Zero();
-        for (const std::uint32_t i : idx) {
-            const Vec3d d = cloud.points[i].cast<double>() - surfaces[s].home;
-            sum += d;
-            sq += d * d.transpose();
-        }
-        CentredMoments& m = moments[s];
-        m.n = double(idx.size());
-        m.mean = surfaces[s].home + sum / m.n;
-        m.scatter = sq - sum * sum.transpose() / m.n;
+        Moments about_home;
+        for (const std::uint32_t i : idx)
+            about_home.add(points[i].cast<double>() - surfaces[s].home);
+        moments[s] = CentredMoments::of(about_home, surfaces[s].home);
     }
-    out.stats.noise = median_of(thickness);
-    if (cfg.max_offset == 0)
-        cfg.max_offset = std::clamp(3 * out.stats.noise, cfg.mu / 4, cfg.mu / 2);
+    return median_of(std::move(thickness));
+}
+
+// The defaults of a configuration's lengths, from mu and the measured noise.
+void resolve_defaults(BoundPlaneConfig& cfg, double noise) {
+    if (cfg.max_offset == 0) cfg.max_offset = std::clamp(3 * noise, cfg.mu / 4, cfg.mu / 2);
     if (cfg.adjacency == 0) cfg.adjacency = cfg.mu / 2;
     if (cfg.max_gap == 0) cfg.max_gap = 5 * cfg.mu;
     if (cfg.resolution == 0) cfg.resolution = cfg.mu / 2;
     if (cfg.simplify_tolerance == 0) cfg.simplify_tolerance = cfg.resolution;
-    if (ns == 0 || members.index.empty()) return out;
+}
 
-    // Patch graph, as CSR.
-    const auto pairs =
-        adjacent_patch_pairs(cloud.points, labels, surfaces, used, cfg.adjacency, threads);
-    out.stats.adjacent_pairs = pairs.size();
-    std::vector<std::uint32_t> adj_off(ns + 1, 0), adj;
+// Which patches touch which, as CSR: the neighbours of s are adj[off[s], off[s + 1]), ascending.
+struct PatchGraph {
+    std::vector<std::uint32_t> off;
+    std::vector<std::uint32_t> adj;
+};
+
+PatchGraph patch_graph(std::span<const std::pair<std::uint32_t, std::uint32_t>> pairs,
+                       std::size_t ns) {
+    PatchGraph g;
+    std::vector<std::uint32_t>& adj_off = g.off;
+    std::vector<std::uint32_t>& adj = g.adj;
+    adj_off.assign(ns + 1, 0);
     for (const auto& [a, b] : pairs) {
         ++adj_off[a + 1];
         ++adj_off[b + 1];
     }
     for (std::size_t s = 0; s < ns; ++s) adj_off[s + 1] += adj_off[s];
     adj.resize(adj_off[ns]);
-    {
-        std::vector<std::uint32_t> fill(adj_off.begin(), adj_off.end() - 1);
-        for (const auto& [a, b] : pairs) {  // pairs are sorted, so each list comes out ascending
-            adj[fill[a]++] = b;
-            adj[fill[b]++] = a;
-        }
-        for (std::size_t s = 0; s < ns; ++s)
-            std::sort(adj.begin() + adj_off[s], adj.begin() + adj_off[s + 1]);
+    std::vector<std::uint32_t> fill(adj_off.begin(), adj_off.end() - 1);
+    for (const auto& [a, b] : pairs) {  // pairs are sorted, so each list comes out ascending
+        adj[fill[a]++] = b;
+        adj[fill[b]++] = a;
     }
+    for (std::size_t s = 0; s < ns; ++s)
+        std::sort(adj.begin() + adj_off[s], adj.begin() + adj_off[s + 1]);
+    return g;
+}
 
-    // Region growing, seeds by decreasing member count.
+// Regions of coplanar patches: each patch's region (-1: none), each region's patches and pooled
+// moments.
+struct Regions {
+    std::vector<std::int32_t> of_patch;
+    std::vector<std::vector<std::uint32_t>> members;
+    std::vector<CentredMoments> moments;
+};
+
+// Region growing over the patch graph, seeds by decreasing member count: a neighbour joins when
+// it is coplanar with the patch that reached it and with the region's pooled plane so far.
+Regions grow_regions(std::span<const Surface> surfaces, const Members& members,
+                     const std::vector<CentredMoments>& moments,
+                     const std::vector<std::uint8_t>& used, const PatchGraph& graph,
+                     const BoundPlaneConfig& cfg) {
+    const std::size_t ns = surfaces.size();
+    const std::vector<std::uint32_t>& adj_off = graph.off;
+    const std::vector<std::uint32_t>& adj = graph.adj;
     const double cos_max = std::cos(cfg.max_angle_deg * kDeg);
     const double off = cfg.max_offset;
     auto parallel = [&](const Vec3d& a, const Vec3d& b) { return std::abs(a.dot(b)) >= cos_max; };
@@ -426,15 +378,17 @@ BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surfac
                std::abs(q.plane().signed_distance(p.centroid)) <= off &&
                std::abs(p.plane().signed_distance(q.centroid)) <= off;
     };
+    Regions regions;
+    std::vector<std::int32_t>& region = regions.of_patch;
+    std::vector<std::vector<std::uint32_t>>& region_members = regions.members;
+    std::vector<CentredMoments>& region_moments = regions.moments;
+    region.assign(ns, -1);
     std::vector<std::uint32_t> seeds;
     for (std::uint32_t s = 0; s < ns; ++s)
         if (used[s]) seeds.push_back(s);
     std::stable_sort(seeds.begin(), seeds.end(), [&](std::uint32_t a, std::uint32_t b) {
         return members.of(a).size() > members.of(b).size();
     });
-    std::vector<std::int32_t> region(ns, -1);
-    std::vector<std::vector<std::uint32_t>> region_members;
-    std::vector<CentredMoments> region_moments;
     std::deque<std::uint32_t> queue;
     for (const std::uint32_t seed : seeds) {
         if (region[seed] >= 0) continue;
@@ -470,94 +424,92 @@ BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surfac
         region_members.push_back(std::move(list));
         region_moments.push_back(pooled);
     }
-    absorb_fragments(cloud.points, members, adj_off, adj, cfg, region, region_members,
-                     region_moments, moments);
-    bridge_gaps(surfaces, used, region, cfg, region_members, region_moments, threads);
-    std::erase_if(region_members, [](const std::vector<std::uint32_t>& l) { return l.empty(); });
-    std::erase_if(region_moments, [](const CentredMoments& m) { return m.n == 0; });
-    for (std::vector<std::uint32_t>& list : region_members) std::sort(list.begin(), list.end());
+    return regions;
+}
 
-    // Each region's plane, frame and boundary; independent, so in parallel.
-    const std::size_t nr = region_members.size();
-    std::vector<BoundPlane> planes(nr);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (std::size_t r = 0; r < nr; ++r) {
-        BoundPlane& bp = planes[r];
-        const std::vector<std::uint32_t>& list = region_members[r];
-        const CentredMoments& all = region_moments[r];
-        Fit fit = fit_moments(all);
-        CentredMoments m = all;
-        std::vector<Vec3d> points;  // the members, contiguous: every pass below streams them
-        points.reserve(static_cast<std::size_t>(all.n));
-        for (const std::uint32_t s : list)
-            for (const std::uint32_t i : members.of(s))
-                points.push_back(cloud.points[i].cast<double>());
-        if (!fit.degenerate) {
-            // Until the inliers stop changing (two or three passes on the test scenes).
-            const double spread = std::sqrt(all.scatter.trace() / all.n);
-            std::vector<double> scratch;
-            for (int pass = 0; pass < kRefitPasses; ++pass) {
-                const CentredMoments inliers =
-                    inlier_moments(points, fit.normal, m.mean, kInlierSigmas, spread, scratch);
-                const Fit f = fit_moments(inliers);
-                if (inliers.n < 3 || f.degenerate) break;
-                const bool same = inliers.n == m.n;
-                m = inliers;
-                fit = f;
-                if (same) break;
-            }
+// A region's bound plane: the least-squares plane of its members' points, refitted to its inliers,
+// oriented by its patches' normals, with its frame, bounds and boundary polygons.
+BoundPlane fit_region(std::span<const Vec3f> cloud_points, std::span<const Surface> surfaces,
+                      const Members& members, const std::vector<CentredMoments>& moments,
+                      const std::vector<std::uint32_t>& list, const CentredMoments& all,
+                      const BoundPlaneConfig& cfg) {
+    BoundPlane plane;
+    Fit fit = fit_moments(all);
+    CentredMoments m = all;
+    std::vector<Vec3d> points;  // the members, contiguous: every pass below streams them
+    points.reserve(static_cast<std::size_t>(all.n));
+    for (const std::uint32_t s : list)
+        for (const std::uint32_t i : members.of(s))
+            points.push_back(cloud_points[i].cast<double>());
+    if (!fit.degenerate) {
+        // Until the inliers stop changing (two or three passes on the test scenes).
+        const double spread = std::sqrt(all.scatter.trace() / all.n);
+        std::vector<double> scratch;
+        for (int pass = 0; pass < kRefitPasses; ++pass) {
+            const CentredMoments inliers =
+                inlier_moments(points, fit.normal, m.mean, kInlierSigmas, spread, scratch);
+            const Fit f = fit_moments(inliers);
+            if (inliers.n < 3 || f.degenerate) break;
+            const bool same = inliers.n == m.n;
+            m = inliers;
+            fit = f;
+            if (same) break;
         }
-        bp.patches = list;
-        bp.point_count = static_cast<std::uint64_t>(all.n);
-        bp.centroid = m.mean;
-        bp.degenerate = fit.degenerate;
-        Vec3d n = fit.normal;
-        if (fit.degenerate) {  // the patches' own normals, sign-aligned and point-weighted
-            Vec3d sum = Vec3d::Zero();
-            for (const std::uint32_t s : list)
-                sum += (surfaces[s].normal.dot(surfaces[list[0]].normal) >= 0 ? 1.0 : -1.0) *
-                       moments[s].n * surfaces[s].normal;
-            n = sum.norm() > 0 ? Vec3d(sum.normalized()) : surfaces[list[0]].normal;
-        }
-        // Orientation: the majority of the member patches' (sensor-facing) normals; a tie goes
-        // to the point-weighted vote, then to the first patch.
-        long votes = 0;
-        double weight = 0;
-        for (const std::uint32_t s : list) {
-            const double d = surfaces[s].normal.dot(n);
-            votes += d >= 0 ? 1 : -1;
-            weight += (d >= 0 ? 1 : -1) * moments[s].n;
-        }
-        const bool flip = votes != 0
-                              ? votes < 0
-                              : (weight != 0 ? weight < 0 : surfaces[list[0]].normal.dot(n) < 0);
-        bp.normal = flip ? Vec3d(-n) : n;
-        bp.rms = std::sqrt(std::max(0.0, bp.normal.dot(all.scatter * bp.normal) / all.n +
-                                             std::pow(bp.normal.dot(all.mean - m.mean), 2)));
-        bp.u_axis = principal_axis(bp.normal, all.scatter);
-        bp.v_axis = bp.normal.cross(bp.u_axis);
-        std::vector<Vec2d> flat;
-        flat.reserve(bp.point_count);
-        std::vector<double> spacing;
-        for (const Vec3d& p : points) {
-            bp.bounds.add(p);
-            flat.push_back(bp.to_plane(p));
-        }
-        for (const std::uint32_t s : list) {
-            const Surface& f = surfaces[s];
-            if (f.neighbours > 0)
-                spacing.push_back(std::sqrt(M_PI * f.radius * f.radius / double(f.neighbours)));
-        }
-        bp.closing_radius = cfg.closing_radius > 0
-                                ? cfg.closing_radius
-                                : std::max(cfg.resolution, 1.5 * median_of(std::move(spacing)));
-        const PlaneRaster raster = rasterise_points(flat, cfg.resolution, bp.closing_radius);
-        bp.polygons =
-            trace_boundaries(raster, cfg.simplify_tolerance, 2 * raster.cell * raster.cell);
-        for (const PolygonWithHoles& poly : bp.polygons) bp.area += polygon_area(poly);
     }
+    plane.patches = list;
+    plane.point_count = static_cast<std::uint64_t>(all.n);
+    plane.centroid = m.mean;
+    plane.degenerate = fit.degenerate;
+    Vec3d n = fit.normal;
+    if (fit.degenerate) {  // the patches' own normals, sign-aligned and point-weighted
+        Vec3d sum = Vec3d::Zero();
+        for (const std::uint32_t s : list)
+            sum += (surfaces[s].normal.dot(surfaces[list[0]].normal) >= 0 ? 1.0 : -1.0) *
+                   moments[s].n * surfaces[s].normal;
+        n = sum.norm() > 0 ? Vec3d(sum.normalized()) : surfaces[list[0]].normal;
+    }
+    // Orientation: the majority of the member patches' (sensor-facing) normals; a tie goes
+    // to the point-weighted vote, then to the first patch.
+    long votes = 0;
+    double weight = 0;
+    for (const std::uint32_t s : list) {
+        const double d = surfaces[s].normal.dot(n);
+        votes += d >= 0 ? 1 : -1;
+        weight += (d >= 0 ? 1 : -1) * moments[s].n;
+    }
+    const bool flip =
+        votes != 0 ? votes < 0 : (weight != 0 ? weight < 0 : surfaces[list[0]].normal.dot(n) < 0);
+    plane.normal = flip ? Vec3d(-n) : n;
+    plane.rms = std::sqrt(std::max(0.0, plane.normal.dot(all.scatter * plane.normal) / all.n +
+                                            std::pow(plane.normal.dot(all.mean - m.mean), 2)));
+    plane.u_axis = principal_axis(plane.normal, all.scatter);
+    plane.v_axis = plane.normal.cross(plane.u_axis);
+    std::vector<Vec2d> flat;
+    flat.reserve(plane.point_count);
+    std::vector<double> spacing;
+    for (const Vec3d& p : points) {
+        plane.bounds.add(p);
+        flat.push_back(plane.to_plane(p));
+    }
+    for (const std::uint32_t s : list) {
+        const Surface& f = surfaces[s];
+        if (f.neighbours > 0)
+            spacing.push_back(std::sqrt(M_PI * f.radius * f.radius / double(f.neighbours)));
+    }
+    plane.closing_radius = cfg.closing_radius > 0
+                               ? cfg.closing_radius
+                               : std::max(cfg.resolution, 1.5 * median_of(std::move(spacing)));
+    const PlaneRaster raster = rasterise_points(flat, cfg.resolution, plane.closing_radius);
+    plane.polygons =
+        trace_boundaries(raster, cfg.simplify_tolerance, 2 * raster.cell * raster.cell);
+    for (const PolygonWithHoles& poly : plane.polygons) plane.area += polygon_area(poly);
+    return plane;
+}
 
-    // Largest first; ties by smallest member id (every plane has members, all distinct).
+// The planes in publishing order, largest first (ties by smallest member id: every plane has
+// members, all distinct), with each patch's plane and the totals.
+void publish_planes(std::vector<BoundPlane>& planes, BoundPlanes& out) {
+    const std::size_t nr = planes.size();
     std::vector<std::size_t> order(nr);
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
@@ -575,6 +527,80 @@ BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surfac
         out.stats.area += planes[r].area;
         out.planes.push_back(std::move(planes[r]));
     }
+}
+
+}  // namespace
+
+void validate(const BoundPlaneConfig& c) {
+    if (!(c.mu > 0) || !std::isfinite(c.mu)) bad({"mu must be positive, got ", num(c.mu)});
+    if (!(c.max_angle_deg > 0 && c.max_angle_deg < 90))
+        bad({"plane angle must be between 0 and 90 degrees, got ", num(c.max_angle_deg)});
+    const std::pair<const char*, double> lengths[] = {{"plane offset", c.max_offset},
+                                                      {"adjacency distance", c.adjacency},
+                                                      {"boundary resolution", c.resolution},
+                                                      {"closing radius", c.closing_radius},
+                                                      {"simplify tolerance", c.simplify_tolerance}};
+    for (const auto& [name, v] : lengths)
+        if (!(v >= 0) || !std::isfinite(v)) bad({name, " must be >= 0 (0: default), got ", num(v)});
+    if (!std::isfinite(c.max_gap)) bad({"max gap must be finite, got ", num(c.max_gap)});
+    if (c.resolution > 0 && c.resolution < c.mu * 1e-3)
+        bad({"boundary resolution ", num(c.resolution), " is below mu / 1000"});
+    if (c.threads < 0) bad({"threads must be >= 0, got ", std::to_string(c.threads)});
+}
+
+std::vector<std::int32_t> plane_labels(const BoundPlanes& planes,
+                                       std::span<const std::int32_t> labels) {
+    std::vector<std::int32_t> out(labels.size(), -1);
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        const std::int32_t l = labels[i];
+        if (l >= 0 && static_cast<std::size_t>(l) < planes.plane_of_patch.size())
+            out[i] = planes.plane_of_patch[static_cast<std::size_t>(l)];
+    }
+    return out;
+}
+
+BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surface> surfaces,
+                                 std::span<const std::int32_t> labels,
+                                 const BoundPlaneConfig& config) {
+    validate(config);
+    check_grow_result(cloud, surfaces, labels);
+    BoundPlanes out;
+    BoundPlaneConfig& cfg = out.config;
+    cfg = config;
+    const int threads = resolve_threads(cfg.threads);
+    const std::size_t ns = surfaces.size();
+    out.plane_of_patch.assign(ns, -1);
+    out.stats.patches = ns;
+
+    // Member points and their moments per patch; the defaults that depend on the noise.
+    const Members members = collect_members(cloud.points, labels, ns);
+    std::vector<CentredMoments> moments(ns);
+    std::vector<std::uint8_t> used(ns, 0);
+    out.stats.noise = patch_moments(cloud.points, surfaces, members, moments, used);
+    resolve_defaults(cfg, out.stats.noise);
+    if (ns == 0 || members.index.empty()) return out;
+
+    // Patch graph, regions of coplanar patches, fragments absorbed and gaps bridged.
+    const auto pairs =
+        adjacent_patch_pairs(cloud.points, labels, surfaces, used, cfg.adjacency, threads);
+    out.stats.adjacent_pairs = pairs.size();
+    const PatchGraph graph = patch_graph(pairs, ns);
+    Regions regions = grow_regions(surfaces, members, moments, used, graph, cfg);
+    absorb_fragments(cloud.points, members, graph.off, graph.adj, cfg, regions.of_patch,
+                     regions.members, regions.moments, moments);
+    bridge_gaps(surfaces, used, regions.of_patch, cfg, regions.members, regions.moments, threads);
+    std::erase_if(regions.members, [](const std::vector<std::uint32_t>& l) { return l.empty(); });
+    std::erase_if(regions.moments, [](const CentredMoments& m) { return m.n == 0; });
+    for (std::vector<std::uint32_t>& list : regions.members) std::sort(list.begin(), list.end());
+
+    // Each region's plane, frame and boundary; independent, so in parallel.
+    const std::size_t nr = regions.members.size();
+    std::vector<BoundPlane> planes(nr);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (std::size_t r = 0; r < nr; ++r)
+        planes[r] = fit_region(cloud.points, surfaces, members, moments, regions.members[r],
+                               regions.moments[r], cfg);
+    publish_planes(planes, out);
     return out;
 }
 
