@@ -1,6 +1,8 @@
 // `surfgrow scan2cloud RAW... [--poses FILE] -o cloud.ply`: filter (eq. 1), convert and fuse
 // raw scans into one cloud that keeps each point's scan.
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "commands.hpp"
@@ -12,6 +14,35 @@
 #include "surfgrow/io/raw_scan_format.hpp"
 
 namespace surfgrow::cli {
+
+namespace {
+
+// The raw scan files the arguments name: a file as it is, a folder (the one `surfgrow scan -o`
+// writes) as its .sgraw files in name order, which is scan order. A folder without any is an
+// error: fusing nothing silently would hide a wrong path.
+std::vector<std::string> raw_scan_files(const std::vector<std::string>& args) {
+    namespace fs = std::filesystem;
+    std::vector<std::string> files;
+    for (const std::string& arg : args) {
+        std::error_code ec;
+        if (!fs::is_directory(arg, ec)) {
+            files.push_back(arg);
+            continue;
+        }
+        std::vector<std::string> found;
+        for (const fs::directory_entry& e : fs::directory_iterator(arg, ec))
+            if (e.path().extension() == ".sgraw") found.push_back(e.path().string());
+        if (ec) throw Error(ErrorCode::kCannotOpen, cat({"cannot list ", arg, ": ", ec.message()}));
+        if (found.empty())
+            throw Error(ErrorCode::kCannotOpen,
+                        cat({arg, ": no raw scans (.sgraw) in this folder"}));
+        std::sort(found.begin(), found.end());
+        files.insert(files.end(), found.begin(), found.end());
+    }
+    return files;
+}
+
+}  // namespace
 
 void add_scan2cloud_command(CLI::App& app) {
     auto* cmd = app.add_subcommand(
@@ -26,7 +57,9 @@ void add_scan2cloud_command(CLI::App& app) {
         bool quiet = false;
     };
     auto args = std::make_shared<Args>();
-    cmd->add_option("raw", args->raws, "Raw scan files (.sgraw), in scan order")->required();
+    cmd->add_option("raw", args->raws,
+                    "Raw scan files (.sgraw) in scan order, or a folder of them (surfgrow scan -o)")
+        ->required();
     cmd->add_option("--poses", args->poses,
                     "Poses file (one per raw scan, in order; default: each scan's own pose)");
     cmd->add_option("-o,--out", args->out,
@@ -40,6 +73,7 @@ void add_scan2cloud_command(CLI::App& app) {
                     "Drop readings farther than this (default: the scan's laser limit)");
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
     cmd->callback([args] {
+        args->raws = raw_scan_files(args->raws);
         std::vector<scanner::RawScan> raws;
         for (const std::string& file : args->raws) raws.push_back(io::read_raw_scan(file));
         if (!args->poses.empty()) {

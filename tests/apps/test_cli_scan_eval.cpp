@@ -108,6 +108,21 @@ TEST_F(CliScan, Scan2CloudOfTheRawScansIsTheFusedCloud) {
               io::read_cloud(scan_dir() / "cloud.ply").size() / 2);
 }
 
+// The folder `surfgrow scan -o` wrote stands for its raw scans, in scan order (the README's
+// `surfgrow scan2cloud scan/ -o cloud.ply`); a folder without any is refused by name.
+TEST_F(CliScan, Scan2CloudOfAScanFolderIsTheFusedCloud) {
+    const CliRun run =
+        surfgrow(cat({"scan2cloud ", q(scan_dir()), " -o ", q(tmp_.path() / "d.ply")}));
+    ASSERT_EQ(run.code, 0) << run.out;
+    EXPECT_EQ(test::read_bytes(tmp_.path() / "d.ply"), test::read_bytes(scan_dir() / "cloud.ply"));
+    fs::create_directories(tmp_.path() / "empty");
+    const CliRun empty =
+        surfgrow(cat({"scan2cloud ", q(tmp_.path() / "empty"), " -o ", q(tmp_.path() / "e.ply")}));
+    EXPECT_EQ(empty.code, static_cast<int>(ErrorCode::kCannotOpen)) << empty.out;
+    EXPECT_NE(empty.out.find("no raw scans"), std::string::npos) << empty.out;
+    EXPECT_FALSE(fs::exists(tmp_.path() / "e.ply"));
+}
+
 TEST_F(CliScan, OtherPosesMoveTheCloud) {
     test::write_bytes(tmp_.path() / "moved.txt",
                       "0.5 0.5 1.6 0 0 45\n0.75 0.25 1.6 0 0 45\n");  // 1 m higher
