@@ -3,8 +3,13 @@
 include(GNUInstallDirs)
 
 set(SURFGROW_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align
-    -Wunused -Woverloaded-virtual -Wnull-dereference -Wdouble-promotion -Wformat=2
-    -Wimplicit-fallthrough)
+    -Wunused -Woverloaded-virtual -Wnull-dereference -Wformat=2 -Wimplicit-fallthrough)
+# GCC's -Wdouble-promotion flags float arithmetic silently carried out in double (a slow path and
+# a result that differs from the float kernels'); clang's also flags every exact float-to-double
+# assignment, which is how float results reach the double API. GCC's meaning on both.
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    list(APPEND SURFGROW_WARNINGS -Wdouble-promotion)
+endif()
 
 # Floating point as written: no fused multiply-adds the compiler picks per target, so a build for
 # any CPU gives the same bytes (docs/performance.md, "Portable binaries").

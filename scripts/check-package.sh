@@ -4,7 +4,9 @@
 #  2. examples/cpp built against that prefix with find_package(surfgrow), and run;
 #  3. a parent project that takes surfgrow in with add_subdirectory, built and run;
 #  4. the installed CLI under qemu-user emulating a Westmere CPU (SSE4.2, no AVX): the default
-#     build runs on any x86-64, with the SIMD paths chosen at run time.
+#     build runs on any x86-64, with the SIMD paths chosen at run time;
+#  5. the libraries and CLI built with Debian's clang: every SIMD path it has gives the bytes of
+#     the GCC build's.
 # Usage: scripts/check-package.sh [build dir, default build]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -49,4 +51,19 @@ if [[ $(uname -m) == x86_64 ]]; then
         cmp "$tmp/native/$f" "$tmp/westmere/$f"
     done
 fi
+echo "check-package: the libraries and CLI built with clang" >&2
+CC=clang CXX=clang++ cmake -S . -B "$tmp/clang" -DCMAKE_BUILD_TYPE=Release -DSURFGROW_WERROR=ON \
+    -DSURFGROW_BUILD_TESTS=OFF -DSURFGROW_BUILD_BENCHMARKS=OFF -DSURFGROW_BUILD_EXAMPLES=OFF \
+    -DSURFGROW_INSTALL=OFF >/dev/null
+cmake --build "$tmp/clang" -j "$(nproc)" --target surfgrow >/dev/null
+gcc_cli="$build/apps/surfgrow/surfgrow"
+"$gcc_cli" scan --scene ibeam-channel --poses 1 -q -o "$tmp/channel"
+"$gcc_cli" grow "$tmp/channel/cloud.ply" -o "$tmp/gcc" -q --no-picture --no-octomap
+for isa in baseline avx2 avx512; do
+    SURFGROW_SIMD=$isa "$tmp/clang/apps/surfgrow/surfgrow" grow "$tmp/channel/cloud.ply" \
+        -o "$tmp/clang-$isa" -q --no-picture --no-octomap
+    for f in surfaces.json labels.txt planes.json coverage.json; do
+        cmp "$tmp/gcc/$f" "$tmp/clang-$isa/$f"
+    done
+done
 echo "check-package: ok" >&2

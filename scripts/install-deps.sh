@@ -2,14 +2,14 @@
 # Installs the Debian packages surfgrow needs, by group; does nothing when they are all present.
 #   scripts/install-deps.sh build        compiler, CMake, libraries (enough to build and run)
 #   scripts/install-deps.sh test         + GoogleTest, Google Benchmark, test-only tools
-#   scripts/install-deps.sh package      + qemu-user, for the portability check (scripts/check-package.sh)
+#   scripts/install-deps.sh package      + qemu-user, clang and its OpenMP, for the portability check (scripts/check-package.sh)
 #   scripts/install-deps.sh peers        + PCL, CGAL, Open3D for bench/peers (optional)
 set -euo pipefail
 
 declare -A group=(
     [build]="cmake make g++ pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev liblzf-dev libpng-dev libfreetype-dev libfontconfig-dev fonts-dejavu-core liboctomap-dev python3 python3-matplotlib python3-numpy"
     [test]="libgtest-dev libgmock-dev libbenchmark-dev clang-format"
-    [package]="qemu-user"
+    [package]="qemu-user clang libomp-dev"
     [peers]="libpcl-dev libcgal-dev libtbb-dev python3-open3d libgmp-dev libmpfr-dev"
 )
 # surfgrow view: three.js from Debian, embedded into the binary at build time; its browser test.

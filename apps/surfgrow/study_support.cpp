@@ -437,9 +437,11 @@ void publish_study(const std::filesystem::path& out,
                    const Plots& plots, const std::string& record_name, const nlohmann::json& record,
                    std::string_view written) {
     io::OutputTransaction tx(out);
-    for (const auto& [name, bytes] : csv_files) tx.add(name, [&](std::ostream& o) { o << bytes; });
-    for (const auto& [name, bytes] : plots.files)
-        tx.add(name, [&](std::ostream& o) { o << bytes; });
+    // (Not structured bindings: clang 14 cannot capture them in a lambda.)
+    for (const auto& file : csv_files)
+        tx.add(file.first, [&](std::ostream& o) { o << file.second; });
+    for (const auto& file : plots.files)
+        tx.add(file.first, [&](std::ostream& o) { o << file.second; });
     tx.add(record_name, [&](std::ostream& o) { o << record.dump(2) << "\n"; });
     tx.commit();
     if (!plots.drawn)

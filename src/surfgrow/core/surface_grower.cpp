@@ -469,7 +469,7 @@ void layer_offsets(const GrowContext& ctx, const Vec3f& h, const Neighbourhood& 
     const auto r = static_cast<float>(nb.radius);
     for_each_in_runs_within(ctx.index, nb.runs, h, r * r, [&](std::uint32_t j) {
         const std::uint32_t scan = ctx.sight.scan_of(j);
-        const double d = n.dot(ctx.index.local_point(j) - c);
+        const auto d = static_cast<double>(n.dot(ctx.index.local_point(j) - c));
         auto it = std::find_if(layers.begin(), layers.end(),
                                [&](const Layer& l) { return l.scan == scan; });
         if (it == layers.end()) {
@@ -592,7 +592,7 @@ std::int32_t attach_layer(const GrowContext& ctx, const Vec3d& ray,
         const double max_offset = kLayerSigmas * ctx.layers.sigma(range) *
                                   std::max(std::abs(surf.normal.dot(ray)) / range, kMinLayerCos);
         dist.clear();
-        for (const Vec3f& q : layer) dist.push_back(n.dot(q - c));
+        for (const Vec3f& q : layer) dist.push_back(static_cast<double>(n.dot(q - c)));
         const auto mid = dist.begin() + static_cast<std::ptrdiff_t>(dist.size() / 2);
         std::nth_element(dist.begin(), mid, dist.end());
         const double m = *mid;
@@ -867,10 +867,10 @@ void surfaces_of(std::span<const GrownSurface> all, const CubeIndex& index, int 
         s.centroid = s.home + g.fit.centroid;
         s.normal = g.fit.normal;
         s.eigenvalues = g.fit.eigenvalues;
-        s.radius = g.radius;
+        s.radius = static_cast<double>(g.radius);
         s.neighbours = g.neighbours;
-        s.tolerance = g.tolerance;
-        tolerance[k] = g.tolerance;
+        s.tolerance = static_cast<double>(g.tolerance);
+        tolerance[k] = static_cast<double>(g.tolerance);
     }
 }
 

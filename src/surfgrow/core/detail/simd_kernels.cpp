@@ -9,6 +9,8 @@ namespace surfgrow::detail {
 extern const KernelTable kernel_table_baseline;
 #if defined(SURFGROW_KERNELS_X86)
 extern const KernelTable kernel_table_avx2;
+#endif
+#if defined(SURFGROW_KERNELS_AVX512)
 extern const KernelTable kernel_table_avx512;
 #endif
 
@@ -21,12 +23,14 @@ struct Path {
 
 // Widest first.
 const Path kPaths[] = {
-#if defined(SURFGROW_KERNELS_X86)
+#if defined(SURFGROW_KERNELS_AVX512)
     {&kernel_table_avx512,
      [] {
          return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
                 __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
      }},
+#endif
+#if defined(SURFGROW_KERNELS_X86)
     {&kernel_table_avx2, [] { return bool(__builtin_cpu_supports("avx2")); }},
 #endif
     {&kernel_table_baseline, [] { return true; }},
