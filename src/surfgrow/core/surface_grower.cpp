@@ -997,8 +997,9 @@ constexpr std::int32_t kNotIndexed = -2;
 /// Stage 4b: registration by range band, over the input in its order (integer counts: any split
 /// of the work gives the same totals); the not-indexed mark becomes the unregistered label.
 std::vector<RangeBand> range_bands(const PointCloud& cloud, const Orientation& orient,
-                                   bool range_known, double band_width, int threads,
+                                   double band_width, int threads,
                                    std::span<std::int32_t> input_labels) {
+    const bool range_known = orient.source != OrientationSource::kUp;
     const bool per_scan = orient.source == OrientationSource::kScanOrigins;
     std::vector<Vec3f> origins;  // relative to the cloud's offset: one, or one per scan
     if (per_scan)
@@ -1171,7 +1172,6 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud, const GrowIndex& grow_in
     std::vector<std::uint32_t> home_of(surface_count);  // sorted index of each surface's home
     std::vector<double> tolerance(surface_count);
     surfaces_of(all, index, threads, result.surfaces, home_of, tolerance);
-    st.surfaces = surface_count;
     if (cfg.pool_angle_deg > 0 && surface_count > 0)
         refine_normals(cfg, index, threads, all, result.surfaces, tolerance, labels, st);
     release(all);
@@ -1198,8 +1198,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud, const GrowIndex& grow_in
     for (std::size_t i = 0; i < n; ++i) result.labels[orig[i]] = labels[i];
     st.registered = member_statistics(index, labels, tolerance, threads, result.surfaces);
     st.noise_points = st.valid_points - st.registered;
-    st.range_bands =
-        range_bands(cloud, orient, st.range_known, cfg.range_band, threads, result.labels);
+    st.range_bands = range_bands(cloud, orient, cfg.range_band, threads, result.labels);
     orient_normals(cloud, orient, orig, home_of, threads, result.surfaces);
     st.dropped_surfaces = drop_empty_surfaces(threads, result.surfaces, result.labels);
     st.surfaces = result.surfaces.size();

@@ -30,26 +30,26 @@ PipelineResult Pipeline::run(const PointCloud& cloud) const {
     if (!c.occupancy) index.reset();
 
     if (c.planes) {
-        Stopwatch watch;
+        const Stopwatch watch;
         r.planes = compute_bound_planes(cloud, r.grow.surfaces, r.grow.labels, *c.planes);
         r.seconds.planes = watch.seconds();
         report("planes");
         if (c.coverage) {
-            watch.lap();
+            const Stopwatch cover;
             r.coverage = plan_coverage(*r.planes, r.grow.surfaces, *c.coverage);
-            r.seconds.coverage = watch.seconds();
+            r.seconds.coverage = cover.seconds();
             report("coverage");
         }
     }
     if (c.occupancy) {
-        Stopwatch watch;
+        const Stopwatch watch;
         r.occupancy = OccupancyGrid(index->index, r.grow.labels, c.grow.mu);
         index.reset();
         r.seconds.occupancy = watch.seconds();
         report("occupancy");
     }
     if (c.collision) {
-        Stopwatch watch;
+        const Stopwatch watch;
         r.collision = CollisionSpheres::from_surfaces(r.grow.surfaces);
         r.seconds.collision = watch.seconds();
         report("collision");
