@@ -1,16 +1,23 @@
 #!/usr/bin/env bash
 # The README's command lines, run as a user would type them: every `surfgrow` line of its sh
 # blocks, and every command of its "Every command" table with the placeholders filled in
-# (CLOUD, OUT, SCENE), must exit 0. Run by ctest (README.CommandLines) on the built binary.
-#   readme_commands.sh SURFGROW README
+# (CLOUD, OUT, SCENE), must exit 0. Run by ctest (README.CommandLines) on the built binary; a
+# cross build names the emulator that runs it (qemu-aarch64).
+#   readme_commands.sh SURFGROW README [EMULATOR...]
 set -euo pipefail
 surfgrow=$(realpath "$1")
 readme=$(realpath "$2")
+shift 2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
 mkdir bin
-ln -s "$surfgrow" bin/surfgrow
+if [[ $# -eq 0 ]]; then
+    ln -s "$surfgrow" bin/surfgrow
+else
+    printf '#!/bin/sh\nexec %s %s "$@"\n' "$*" "$surfgrow" >bin/surfgrow
+    chmod +x bin/surfgrow
+fi
 export PATH="$work/bin:$PATH"
 
 # What the commands read: a scan folder of a built-in scene, clouds in metres (PLY, PCD) and in

@@ -114,7 +114,9 @@ struct Held {
     double single_band = kMinRegistered;  // per range band, one scan
 };
 Held held_to(const std::string& scene) {
-    if (scene == "ibeam-channel") return {0.008, 0.75, 0.975};
+    // The channel's > 45 degree share moves with the draw of the pose errors (0.54-0.84 % for
+    // robustness_study --pose-seed 1..5) and with the platform's libm (aarch64: 0.83 %).
+    if (scene == "ibeam-channel") return {0.009, 0.75, 0.975};
     if (scene == "pipes") return {0.0095, 0.6, kMinRegistered};
     if (scene == "corridor") return {kMaxShareOver45, 0.8, kMinRegistered};
     return {};
