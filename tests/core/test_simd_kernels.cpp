@@ -63,7 +63,8 @@ std::vector<std::uint32_t> within_all(const KernelTable& k, const Arrays& a, con
     for (const IndexRun& run : kRuns)
         for (std::uint32_t b = run.begin; b < run.end; b += detail::kKernelChunk) {
             const std::uint32_t e = std::min(run.end, b + detail::kKernelChunk);
-            const std::uint32_t n = k.within(a.view(), b, e, p, r2, labels, 2, buf);
+            const IndexRun piece{b, e};
+            const std::uint32_t n = k.within(a.view(), &piece, 1, p, r2, labels, 2, buf);
             out.insert(out.end(), buf, buf + n);
         }
     return out;
@@ -117,10 +118,11 @@ TEST(SimdKernels, EveryPathGivesTheBaselineBytes) {
                   within_all(*t, a, kHome, r2, a.labels.data()));
         std::uint32_t i0[detail::kKernelChunk], i1[detail::kKernelChunk];
         float d0[detail::kKernelChunk], d1[detail::kKernelChunk];
+        const IndexRun pieces[2] = {{57, 150}, {170, 250}};  // two runs in one call
         const std::uint32_t n0 =
-            base.on_plane(a.view(), 57, 250, kHome, r2, kNormal, 0.0005f, 0.003f, i0, d0);
+            base.on_plane(a.view(), pieces, 2, kHome, r2, kNormal, 0.0005f, 0.003f, i0, d0);
         const std::uint32_t n1 =
-            t->on_plane(a.view(), 57, 250, kHome, r2, kNormal, 0.0005f, 0.003f, i1, d1);
+            t->on_plane(a.view(), pieces, 2, kHome, r2, kNormal, 0.0005f, 0.003f, i1, d1);
         ASSERT_EQ(n0, n1);
         ASSERT_GT(n0, 0u);
         EXPECT_EQ(std::memcmp(i0, i1, n0 * sizeof *i0), 0);

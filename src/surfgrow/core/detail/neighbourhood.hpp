@@ -19,13 +19,34 @@ inline PointArrays arrays_of(const CubeIndex& index) {
     return {index.xs(), index.ys(), index.zs()};
 }
 
-/// Calls visit(begin, end) over `runs` in pieces of at most kKernelChunk points, each piece
-/// starting a whole number of vectors after its run's begin.
+/// Calls visit(group, count) over `runs` in groups of at most kKernelChunk points: whole runs
+/// while they fit (one kernel call for several short runs), a longer run in pieces that start a
+/// whole number of vectors after its begin.
 template <class F>
 void for_each_chunk(std::span<const CubeIndex::Range> runs, F&& visit) {
-    for (const CubeIndex::Range& run : runs)
-        for (std::uint32_t b = run.begin; b < run.end; b += kKernelChunk)
-            visit(b, std::min(run.end, b + kKernelChunk));
+    IndexRun group[kKernelChunk];
+    std::size_t count = 0;
+    std::uint32_t points = 0;
+    for (const CubeIndex::Range& run : runs) {
+        const std::uint32_t length = run.end - run.begin;
+        if (length == 0) continue;
+        if (points + length > kKernelChunk && count > 0) {
+            visit(static_cast<const IndexRun*>(group), count);
+            count = 0;
+            points = 0;
+        }
+        for (std::uint32_t b = run.begin; b < run.end; b += kKernelChunk) {
+            const std::uint32_t e = std::min(run.end, b + kKernelChunk);
+            if (e - b == kKernelChunk) {
+                const IndexRun piece{b, e};
+                visit(&piece, std::size_t{1});
+            } else {
+                group[count++] = {b, e};
+                points += e - b;
+            }
+        }
+    }
+    if (count > 0) visit(static_cast<const IndexRun*>(group), count);
 }
 
 /// The loop of for_each_in_runs_within(); with `labels`, only points whose label is not `skip`.
@@ -36,8 +57,8 @@ void runs_within(const CubeIndex& index, std::span<const CubeIndex::Range> runs,
     const PointArrays pts = arrays_of(index);
     const float q[3] = {p.x(), p.y(), p.z()};
     std::uint32_t found[kKernelChunk];
-    for_each_chunk(runs, [&](std::uint32_t b, std::uint32_t e) {
-        const std::uint32_t n = k.within(pts, b, e, q, r2, labels, skip, found);
+    for_each_chunk(runs, [&](const IndexRun* group, std::size_t count) {
+        const std::uint32_t n = k.within(pts, group, count, q, r2, labels, skip, found);
         for (std::uint32_t i = 0; i < n; ++i) f(found[i]);
     });
 }
@@ -89,10 +110,10 @@ void for_each_on_plane(const CubeIndex& index, std::span<const CubeIndex::Range>
     const float offset = normal.dot(centroid);
     std::uint32_t found[kKernelChunk];
     float distance[kKernelChunk];
-    for_each_chunk(runs, [&](std::uint32_t b, std::uint32_t e) {
-        const std::uint32_t count =
-            k.on_plane(pts, b, e, h, radius * radius, n, offset, tolerance, found, distance);
-        for (std::uint32_t i = 0; i < count; ++i) f(found[i], distance[i]);
+    for_each_chunk(runs, [&](const IndexRun* group, std::size_t count) {
+        const std::uint32_t on = k.on_plane(pts, group, count, h, radius * radius, n, offset,
+                                            tolerance, found, distance);
+        for (std::uint32_t i = 0; i < on; ++i) f(found[i], distance[i]);
     });
 }
 

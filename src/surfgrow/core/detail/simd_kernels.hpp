@@ -49,16 +49,16 @@ struct KernelTable {
     const char* isa;  ///< "baseline" (the build's own flags), "avx2", "avx512"
     RawMoments (*moments)(PointArrays p, const IndexRun* runs, std::size_t count,
                           const float home[3], float r2);
-    /// Writes the indices in [begin, end) (end - begin <= kKernelChunk) of the points within
+    /// Writes the indices in `runs` (at most kKernelChunk points in all) of the points within
     /// sqrt(r2) of `p`, and whose label is not `skip` when `labels` is given, in index order;
-    /// returns how many.
-    std::uint32_t (*within)(PointArrays pts, std::uint32_t begin, std::uint32_t end,
+    /// returns how many. Several runs per call: a neighbourhood's runs are short.
+    std::uint32_t (*within)(PointArrays pts, const IndexRun* runs, std::size_t count,
                             const float p[3], float r2, const std::int32_t* labels,
                             std::int32_t skip, std::uint32_t* out);
-    /// Writes the indices in [begin, end) (end - begin <= kKernelChunk) of the points within
+    /// Writes the indices in `runs` (at most kKernelChunk points in all) of the points within
     /// sqrt(r2) of `home` and within `tolerance` of the plane {q : normal.(q - home) = offset},
     /// with their distances to it, in index order; returns how many.
-    std::uint32_t (*on_plane)(PointArrays pts, std::uint32_t begin, std::uint32_t end,
+    std::uint32_t (*on_plane)(PointArrays pts, const IndexRun* runs, std::size_t count,
                               const float home[3], float r2, const float normal[3], float offset,
                               float tolerance, std::uint32_t* out, float* distance);
     FrameSums (*frame_sums)(PointArrays pts, const IndexRun* runs, std::size_t count,
