@@ -49,46 +49,15 @@ void add_occupancy_command(CLI::App& app) {
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
     cmd->callback([args] {
         const std::filesystem::path dir = args->dir;
-        const io::StoredResult stored = io::read_result_folder(dir).result;
+        const io::GrownFolder grown = io::read_grown_folder(dir, args->cloud);
+        const io::StoredResult& stored = grown.result;
+        const PointCloud& cloud = grown.cloud;
+        const std::vector<std::int32_t>& labels = grown.labels;
         GrowerConfig config = stored.config;  // the workspace (crop, viewpoint) included
         const double metres = unit_to_metres(stored.meta.units, "surfaces.json units");
         if (!args->viewpoint.empty())
             config.viewpoint = parse_vec3_length_m(args->viewpoint, "--viewpoint") / metres;
         config.threads = args->threads;
-        const std::vector<std::int32_t> labels = io::read_labels_txt(dir / "labels.txt");
-        const PointCloud cloud = io::read_cloud(args->cloud);
-        if (labels.size() != cloud.size())
-            throw Error(ErrorCode::kMalformedInput,
-                        cat({(dir / "labels.txt").string(), " has ", count_text(labels.size()),
-                             " labels but ", args->cloud, " has ", count_text(cloud.size()),
-                             " points: is this the cloud the result was grown from?"}));
-        if (cloud.offset != stored.meta.offset)
-            throw Error(
-                ErrorCode::kMalformedInput,
-                cat({args->cloud, " is not in the frame of ", (dir / "surfaces.json").string(),
-                     " (a different coordinate offset): is this the cloud the result was "
-                     "grown from?"}));
-        const std::vector<std::uint8_t> grown = grown_point_mask(cloud, config);
-        std::uint64_t n_grown = 0;
-        for (const std::uint8_t g : grown) n_grown += g;
-        if (n_grown != stored.stats.valid_points)
-            throw Error(ErrorCode::kMalformedInput,
-                        cat({args->cloud, " has ", count_text(n_grown), " points to grow but ",
-                             (dir / "surfaces.json").string(), " says ",
-                             count_text(stored.stats.valid_points),
-                             ": is this the cloud the result was grown from?"}));
-        for (std::size_t i = 0; i < labels.size(); ++i) {
-            if (labels[i] >= 0 && !grown[i])
-                throw Error(ErrorCode::kMalformedInput,
-                            cat({(dir / "labels.txt").string(), " line ", count_text(i + 1),
-                                 ": a surface id for a point that was not grown (NaN or outside "
-                                 "the workspace)"}));
-            if (labels[i] >= static_cast<std::int64_t>(stored.surfaces.size()))
-                throw Error(ErrorCode::kMalformedInput,
-                            cat({(dir / "labels.txt").string(), " line ", count_text(i + 1),
-                                 ": surface id ", std::to_string(labels[i]), " but there are ",
-                                 count_text(stored.surfaces.size()), " surfaces"}));
-        }
 
         io::OccupancyOutputs which;
         which.octomap = !args->no_octomap;

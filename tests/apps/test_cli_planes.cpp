@@ -195,6 +195,10 @@ TEST_F(CliPlanes, BadInputsGiveClearErrorsAndLeaveOutputsAlone) {
     PointCloud other = l_cloud();
     other.points.resize(other.points.size() / 2);
     io::write_cloud(dir_ / "other.ply", other);
+    // Same size, other points: the count of points the grower would index differs.
+    PointCloud moved = l_cloud();
+    for (std::size_t i = 0; i < moved.size(); i += 3) moved.points[i] = Vec3f::Constant(NAN);
+    io::write_cloud(dir_ / "moved.ply", moved);
     fs::create_directories(dir_ / "notaresult");
     fs::create_directories(dir_ / "bad");
     fs::copy(out_, dir_ / "bad", fs::copy_options::recursive);
@@ -215,6 +219,8 @@ TEST_F(CliPlanes, BadInputsGiveClearErrorsAndLeaveOutputsAlone) {
          "nope"},
         {"another cloud", "planes " + o + " --cloud " + q(dir_ / "other.ply"),
          ErrorCode::kMalformedInput, "labels"},
+        {"same size, other points", "planes " + o + " --cloud " + q(dir_ / "moved.ply"),
+         ErrorCode::kMalformedInput, "points to grow"},
         {"offset without unit", "planes " + o + " --cloud " + c + " --offset 6", ErrorCode::kUsage,
          "unit"},
         {"offset zero", "planes " + o + " --cloud " + c + " --offset 0mm",

@@ -158,6 +158,7 @@ TEST_F(CliRobot, OccupancyRefusesAnotherCloudAndMissingInputs) {
     io::write_cloud(dir_ / "moved.ply", moved);
     r = surfgrow(cat({"occupancy ", q(out_), " --cloud ", q(dir_ / "moved.ply")}));
     EXPECT_EQ(r.code, code(ErrorCode::kMalformedInput)) << r.out;
+    EXPECT_NE(r.out.find("points to grow"), std::string::npos) << r.out;
     r = surfgrow(cat({"occupancy ", q(out_), " --cloud ", q(dir_ / "missing.ply")}));
     EXPECT_EQ(r.code, code(ErrorCode::kCannotOpen)) << r.out;
     r = surfgrow(cat({"occupancy ", q(dir_ / "nothing"), " --cloud ", q(input_)}));

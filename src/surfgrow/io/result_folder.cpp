@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/core/grown_points.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/cloud_io.hpp"
 
@@ -45,13 +46,29 @@ GrownCloud read_grown_cloud(const fs::path& cloud_file, const ResultFolder& fold
                     cat({labels.string(), " has ", std::to_string(g.labels.size()), " labels but ",
                          cloud_file.string(), " has ", std::to_string(g.cloud.size()),
                          " points: is this the cloud that was grown?"}));
+    // Same size, other points: the points the grower would index give it away.
+    const std::vector<std::uint8_t> grown = grown_point_mask(g.cloud, folder.result.config);
+    std::uint64_t n_grown = 0;
+    for (const std::uint8_t in : grown) n_grown += in;
+    if (n_grown != folder.result.stats.valid_points)
+        throw Error(ErrorCode::kMalformedInput,
+                    cat({cloud_file.string(), " has ", std::to_string(n_grown),
+                         " points to grow but ", (folder.dir / "surfaces.json").string(), " says ",
+                         std::to_string(folder.result.stats.valid_points),
+                         ": is this the cloud that was grown?"}));
     const auto surfaces = static_cast<std::int64_t>(folder.result.surfaces.size());
-    for (std::size_t i = 0; i < g.labels.size(); ++i)
+    for (std::size_t i = 0; i < g.labels.size(); ++i) {
         if (g.labels[i] >= surfaces)
             throw Error(ErrorCode::kMalformedInput,
                         cat({labels.string(), ": line ", std::to_string(i + 1), " names surface ",
                              std::to_string(g.labels[i]), " but the result has ",
                              std::to_string(surfaces), " surfaces"}));
+        if (g.labels[i] >= 0 && !grown[i])
+            throw Error(ErrorCode::kMalformedInput,
+                        cat({labels.string(), ": line ", std::to_string(i + 1),
+                             " names a surface for a point that was not grown (NaN or outside "
+                             "the workspace)"}));
+    }
     return g;
 }
 

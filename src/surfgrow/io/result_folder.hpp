@@ -30,8 +30,9 @@ struct GrownCloud {
 };
 
 /// Reads `cloud_file` and folder.dir/labels.txt. Throws what read_cloud throws, and
-/// Error(kMalformedInput) when the labels do not match the cloud (not the cloud that was grown)
-/// or name surfaces the result does not have.
+/// Error(kMalformedInput) when the labels do not match the cloud (another count, or another count
+/// of points the grower would index: not the cloud that was grown), name surfaces the result does
+/// not have, or give a surface to a point that was not grown.
 [[nodiscard]] GrownCloud read_grown_cloud(const std::filesystem::path& cloud_file,
                                           const ResultFolder& folder);
 
