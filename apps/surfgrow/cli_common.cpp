@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -12,6 +14,7 @@
 
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/core/threads.hpp"
 
 namespace surfgrow::cli {
 
@@ -149,6 +152,27 @@ std::string length_argument(double metres) {
 
 bool stderr_is_terminal() {
     return ::isatty(STDERR_FILENO) == 1;
+}
+
+void add_threads_option(CLI::App& cmd, int& threads, const std::string& description) {
+    cmd.add_option("--threads", threads, description)
+        ->capture_default_str()
+        ->transform(
+            [](std::string text) {
+                int n = 0;
+                const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+                const int most = max_threads();
+                const bool too_many =
+                    ec == std::errc::result_out_of_range ||
+                    (ec == std::errc() && end == text.data() + text.size() && n > most);
+                if (!too_many || text.starts_with('-')) return text;
+                std::fprintf(stderr,
+                             "surfgrow: note: --threads %s is more than this machine can use; "
+                             "using %d (%d per core)\n",
+                             text.c_str(), most, kThreadsPerCore);
+                return std::to_string(most);
+            },
+            "", "");
 }
 
 }  // namespace surfgrow::cli

@@ -7,7 +7,15 @@
 
 #include "surfgrow/core/geometry.hpp"
 
+namespace CLI {
+class App;
+}
+
 namespace surfgrow::cli {
+
+/// The --threads option every subcommand has (0 = all cores, negative refused); a request above
+/// what the machine can use (surfgrow::max_threads()) is clamped with a note on stderr.
+void add_threads_option(CLI::App& cmd, int& threads, const std::string& description);
 
 /// Parses a length with its unit ("12mm", "1.2 cm", "0.012m", "1e-2m") into metres.
 /// A bare number is refused: in a tool that mixes metre and millimetre clouds, a silent

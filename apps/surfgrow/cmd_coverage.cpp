@@ -31,8 +31,7 @@ void add_coverage_command(CLI::App& app) {
                     "The cloud the result was grown from: computes planes.json (default "
                     "parameters) when the folder has none");
     args->coverage.add_to(*cmd);
-    cmd->add_option("--threads", args->threads, "Worker threads, 0 = all cores")
-        ->capture_default_str();
+    add_threads_option(*cmd, args->threads, "Worker threads, 0 = all cores");
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
     cmd->callback([args] {
         namespace fs = std::filesystem;

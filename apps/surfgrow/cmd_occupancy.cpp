@@ -44,8 +44,7 @@ void add_occupancy_command(CLI::App& app) {
                     "Sensor position x,y,z with unit (e.g. 0,0,1.2m) to carve free space from; "
                     "default: the result's or the cloud's viewpoint");
     cmd->add_flag("--no-octomap", args->no_octomap, "Do not write environment.bt");
-    cmd->add_option("--threads", args->threads, "Worker threads for the index, 0 = all cores")
-        ->capture_default_str();
+    add_threads_option(*cmd, args->threads, "Worker threads for the index, 0 = all cores");
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
     cmd->callback([args] {
         const std::filesystem::path dir = args->dir;

@@ -24,8 +24,7 @@ void add_planes_command(CLI::App& app) {
     cmd->add_option("dir", args->dir, "Result folder written by `surfgrow grow`")->required();
     cmd->add_option("--cloud", args->cloud, "The cloud the result was grown from")->required();
     args->planes.add_to(*cmd);
-    cmd->add_option("--threads", args->threads, "Worker threads, 0 = all cores")
-        ->capture_default_str();
+    add_threads_option(*cmd, args->threads, "Worker threads, 0 = all cores");
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
     cmd->callback([args] {
         const io::GrownFolder f = io::read_grown_folder(args->dir, args->cloud);

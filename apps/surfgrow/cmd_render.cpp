@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cli_common.hpp"
 #include "commands.hpp"
 #include "picture_options.hpp"
 #include "result_layers.hpp"
@@ -103,8 +104,7 @@ void add_render_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--size", a->size, "Picture size in pixels, WIDTHxHEIGHT")
         ->capture_default_str();
-    cmd->add_option("--threads", a->threads, "Threads (0 = all cores); the picture is the same")
-        ->capture_default_str();
+    add_threads_option(*cmd, a->threads, "Threads (0 = all cores); the picture is the same");
     cmd->add_flag("-q,--quiet", a->quiet, "No summary line on stdout");
     cmd->callback([a] { run_render(*a); });
 }

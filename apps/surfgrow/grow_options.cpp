@@ -42,9 +42,8 @@ void GrowOptions::add_to(CLI::App& cmd) {
     cmd.add_flag("--no-attach", no_attach, "Skip the leftover pass (the paper's loop alone)");
     cmd.add_option("--seed", seed, "Random seed for home points (same seed, same output)")
         ->capture_default_str();
-    cmd.add_option("--threads", threads,
-                   "Worker threads, 0 = all cores (output does not depend on it)")
-        ->capture_default_str();
+    add_threads_option(cmd, threads,
+                       "Worker threads, 0 = all cores (output does not depend on it)");
     cmd.add_option("--units", cloud_units, "Length unit of the input cloud: m, cm or mm")
         ->capture_default_str();
     cmd.add_option("--viewpoint", viewpoint,

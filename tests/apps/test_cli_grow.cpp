@@ -86,11 +86,14 @@ TEST_F(CliGrow, WritesEveryOutputAndTheSummaryLine) {
 }
 
 TEST_F(CliGrow, ByteIdenticalOutputsForAnyThreadCount) {
-    for (int t : {1, 2, 4}) {
+    // 100000: more than any machine can use, clamped with a note (it crashed once).
+    for (int t : {1, 2, 4, 100000}) {
         const CliRun r =
             surfgrow("grow " + q(input_) + " -o " + q(dir_ / cat({"t", std::to_string(t)})) +
                      " --seed 9 --threads " + std::to_string(t));
         ASSERT_EQ(r.code, 0) << r.out;
+        EXPECT_EQ(r.out.find("more than this machine can use") != std::string::npos, t == 100000)
+            << r.out;
     }
     for (const char* f :
          {"surfaces.ply", "surfaces.json", "labels.txt", "surfaces.png", "planes.json",
@@ -99,6 +102,7 @@ TEST_F(CliGrow, ByteIdenticalOutputsForAnyThreadCount) {
         const std::string ref = test::read_bytes(dir_ / "t1" / f);
         EXPECT_EQ(test::read_bytes(dir_ / "t2" / f), ref) << f;
         EXPECT_EQ(test::read_bytes(dir_ / "t4" / f), ref) << f;
+        EXPECT_EQ(test::read_bytes(dir_ / "t100000" / f), ref) << f;
     }
 }
 
@@ -186,6 +190,8 @@ TEST_F(CliGrow, BadInputsGiveDistinctCodesAndNoOutput) {
          ErrorCode::kInvalidParameter, "mu"},
         {"mu negative", [](auto&, auto& good) { return q(good) + " --mu -5mm"; },
          ErrorCode::kInvalidParameter, "mu"},
+        {"mu beyond the cloud", [](auto&, auto& good) { return q(good) + " --mu 1e40m"; },
+         ErrorCode::kInvalidParameter, "larger than the whole cloud"},
         {"mu without unit", [](auto&, auto& good) { return q(good) + " --mu 12"; },
          ErrorCode::kUsage, "unit"},
         {"min-pts too small", [](auto&, auto& good) { return q(good) + " --min-pts 2"; },

@@ -8,6 +8,7 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/plane_fit.hpp"
 #include "surfgrow/core/surface_grower.hpp"
+#include "surfgrow/core/threads.hpp"
 
 namespace surfgrow {
 namespace {
@@ -359,6 +360,49 @@ TEST(SurfaceGrower, RangeBandsCountEveryValidPoint) {
     EXPECT_GT(r.stats.range_bands[0].points, 0u);  // 0.5 m plane
     EXPECT_EQ(r.stats.range_bands[1].points, 0u);
     EXPECT_GT(r.stats.range_bands[2].points, 0u);  // 2.5 m plane
+}
+
+// A mu beyond the whole cloud is a wrong unit or a typo: refused before minutes of work, whatever
+// its size (1e40 once overflowed into a wrong message); a mu within the cloud's extent is not.
+TEST(SurfaceGrower, MuBeyondTheWholeCloudIsRefused) {
+    const Scene s =
+        sample_scene({{{0, 0, 0.5}, Vec3d::UnitX(), Vec3d::UnitY(), 0.2, 0.15}}, 0.004, 0.0, 1);
+    Aabb box;
+    for (const Vec3f& p : s.cloud.points) box.add(p.cast<double>());
+    const double diagonal = box.size().norm();
+    for (const double mu : {1.01 * diagonal, 1e3, 1e40}) {
+        GrowerConfig cfg = config_mm();
+        cfg.mu = mu;
+        try {
+            (void)grow_surfaces(s.cloud, cfg);
+            ADD_FAILURE() << "accepted mu = " << mu;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ErrorCode::kInvalidParameter) << mu;
+            EXPECT_NE(std::string(e.what()).find("larger than the whole cloud"), std::string::npos)
+                << e.what();
+        }
+    }
+    GrowerConfig cfg = config_mm();
+    cfg.mu = 0.9 * diagonal;
+    EXPECT_NO_THROW((void)grow_surfaces(s.cloud, cfg));
+}
+
+// More threads than a machine can use are clamped (100000 once crashed with SIGSEGV), and the
+// result does not change.
+TEST(SurfaceGrower, AbsurdThreadCountsAreClamped) {
+    EXPECT_GE(max_threads(), kThreadsPerCore);
+    EXPECT_EQ(resolve_threads(1), 1);
+    EXPECT_EQ(resolve_threads(1000000), max_threads());
+    EXPECT_LE(resolve_threads(0), max_threads());
+    const Scene s =
+        sample_scene({{{0, 0, 0.5}, Vec3d::UnitX(), Vec3d::UnitY(), 0.2, 0.15}}, 0.004, 0.001, 2);
+    GrowerConfig cfg = config_mm();
+    cfg.threads = 1;
+    const GrowResult one = grow_surfaces(s.cloud, cfg);
+    cfg.threads = 1000000;
+    const GrowResult many = grow_surfaces(s.cloud, cfg);
+    EXPECT_EQ(many.labels, one.labels);
+    ASSERT_EQ(many.surfaces.size(), one.surfaces.size());
 }
 
 TEST(SurfaceGrower, RejectsParametersOutOfRange) {

@@ -1110,6 +1110,17 @@ GrowIndex SurfaceGrower::index(const PointCloud& cloud) const {
     GrowIndex g;
     g.index =
         CubeIndex(cloud.points, config_.mu, workspace.inside, resolve_threads(config_.threads));
+    // A mu beyond the whole cloud makes every neighbourhood the whole cloud: nothing can come of
+    // it but a long wait (minutes at 1e3 m on a room), so it is a wrong unit or a typo.
+    const double diagonal = g.index.bounds().size().norm();
+    if (g.index.size() >= 2 && diagonal > 0 && config_.mu > diagonal)
+        throw Error(ErrorCode::kInvalidParameter,
+                    cat({"mu = ", num(config_.mu),
+                         " is larger than the whole cloud (the diagonal of "
+                         "its points' bounding box is ",
+                         num(std::round(diagonal * 1e3) / 1e3),
+                         "): every neighbourhood would hold every point; check mu and the "
+                         "cloud's units"}));
     g.points = cloud.points.size();
     g.cropped_points = workspace.cropped;
     g.seconds = watch.seconds();

@@ -6,8 +6,13 @@
 
 namespace surfgrow {
 
+int max_threads() {
+    return kThreadsPerCore * std::max(1, omp_get_num_procs());
+}
+
 int resolve_threads(int requested) {
-    return requested > 0 ? requested : std::max(1, omp_get_max_threads());
+    const int wanted = requested > 0 ? requested : std::max(1, omp_get_max_threads());
+    return std::min(wanted, max_threads());
 }
 
 }  // namespace surfgrow
