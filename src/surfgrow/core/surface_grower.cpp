@@ -742,6 +742,9 @@ std::vector<LocalPlane> local_planes(const CubeIndex& index, const std::vector<S
 struct Orientation {
     OrientationSource source = OrientationSource::kUp;
     Vec3d origin = Vec3d::Zero();  // single origin (viewpoint or frame origin)
+
+    /// Whether each point's range from a sensor is known (not when normals merely face +z).
+    [[nodiscard]] bool range_known() const { return source != OrientationSource::kUp; }
 };
 
 Orientation choose_orientation(const PointCloud& cloud, const GrowerConfig& cfg, const Aabb& box) {
@@ -774,7 +777,7 @@ SensorSight sight_of(const PointCloud& cloud, const Orientation& orient, const C
         sight.scan_index = cloud.scan_index;
         sight.original = index.original_indices();
         sight.named = true;
-    } else if (orient.source != OrientationSource::kUp) {
+    } else if (orient.range_known()) {
         sight.origins.push_back(index.to_local(orient.origin));
         sight.named = orient.source == OrientationSource::kViewpoint;
     }
@@ -999,7 +1002,7 @@ constexpr std::int32_t kNotIndexed = -2;
 std::vector<RangeBand> range_bands(const PointCloud& cloud, const Orientation& orient,
                                    double band_width, int threads,
                                    std::span<std::int32_t> input_labels) {
-    const bool range_known = orient.source != OrientationSource::kUp;
+    const bool range_known = orient.range_known();
     const bool per_scan = orient.source == OrientationSource::kScanOrigins;
     std::vector<Vec3f> origins;  // relative to the cloud's offset: one, or one per scan
     if (per_scan)
@@ -1116,11 +1119,11 @@ GrowIndex SurfaceGrower::index(const PointCloud& cloud) const {
     if (g.index.size() >= 2 && diagonal > 0 && config_.mu > diagonal)
         throw Error(ErrorCode::kInvalidParameter,
                     cat({"mu = ", num(config_.mu),
-                         " is larger than the whole cloud (the diagonal of "
-                         "its points' bounding box is ",
+                         " is larger than the whole cloud (the diagonal "
+                         "of its points' bounding box is ",
                          num(std::round(diagonal * 1e3) / 1e3),
-                         "): every neighbourhood would hold every point; check mu and the "
-                         "cloud's units"}));
+                         "): every neighbourhood would hold every point; check mu and the cloud's "
+                         "units"}));
     g.points = cloud.points.size();
     g.cropped_points = workspace.cropped;
     g.seconds = watch.seconds();
@@ -1198,7 +1201,7 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud, const GrowIndex& grow_in
     // --- Stage 4: member statistics, labels in input order, range bands, orientation.
     release(distance);
     st.orientation = orient.source;
-    st.range_known = orient.source != OrientationSource::kUp;
+    st.range_known = orient.range_known();
     st.range_origin = orient.origin;
     // Labels in input order. Points not in the index (invalid, cropped) are marked first, so
     // that the range bands can stream the input in its own order and skip them.
