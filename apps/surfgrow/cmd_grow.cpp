@@ -55,7 +55,7 @@ void add_grow_command(CLI::App& app) {
     cmd->callback([args] {
         const CloudUnits units = args->grow.units();
         const Stopwatch read;
-        const PointCloud cloud = io::read_cloud(args->input);
+        const PointCloud cloud = io::read_cloud(args->input, io::kPointsOnly);
         const double read_s = read.seconds();
         PipelineConfig config;
         config.grow = args->grow.config(units);

@@ -152,7 +152,7 @@ void run(const SweepArgs& a) {
                     cat({"cannot write ", a.out, ": it exists and is not a folder"}));
 
     const fs::path file = cloud_file(a.input);
-    const PointCloud cloud = io::read_cloud(file);
+    const PointCloud cloud = io::read_cloud(file, io::kPointsOnly);
     std::size_t finite = 0;
     for (const Vec3f& p : cloud.points) finite += p.allFinite() ? 1 : 0;
     if (finite == 0)

@@ -62,7 +62,7 @@ Truth read_truth(const fs::path& dir) {
         throw Error(
             ErrorCode::kCannotOpen,
             cat({t.cloud_file.string(), ": missing (expected the output of surfgrow scan)"}));
-    t.cloud = io::read_cloud(t.cloud_file);
+    t.cloud = io::read_cloud(t.cloud_file, io::kPointsOnly);
     if (!t.cloud.has_labels() && !t.cloud.empty())
         throw Error(ErrorCode::kMalformedInput,
                     cat({t.cloud_file.string(), ": no ground-truth label per point"}));

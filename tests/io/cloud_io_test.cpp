@@ -150,5 +150,76 @@ TEST(CloudIo, WriteErrorsLeaveThePreviousFile) {
     EXPECT_EQ(files, 1u);
 }
 
+TEST(CloudIo, NormalsRoundTripThroughEveryFormatAndEncoding) {
+    TempDir dir;
+    PointCloud cloud = sample_cloud(150, 34, true, true);
+    add_normals(cloud, 35);
+    struct Case {
+        std::string name;
+        io::WriteOptions options;
+    };
+    std::vector<Case> cases;
+    for (auto enc : {io::PlyEncoding::kAscii, io::PlyEncoding::kBinaryLittleEndian,
+                     io::PlyEncoding::kBinaryBigEndian}) {
+        io::WriteOptions o;
+        o.ply_encoding = enc;
+        cases.push_back({"n_" + std::string(io::to_string(enc)) + ".ply", o});
+    }
+    for (auto enc :
+         {io::PcdEncoding::kAscii, io::PcdEncoding::kBinary, io::PcdEncoding::kBinaryCompressed}) {
+        io::WriteOptions o;
+        o.pcd_encoding = enc;
+        cases.push_back({"n_" + std::string(io::to_string(enc)) + ".pcd", o});
+    }
+    for (const char* ext : {".xyz", ".txt", ".csv", ".pts"}) {
+        io::WriteOptions o;
+        o.text_labels = true;
+        cases.push_back({std::string("n") + ext, o});
+    }
+    io::ReadOptions without;
+    without.read_normals = false;
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        write_cloud(dir / c.name, cloud, c.options);
+        const PointCloud back = read_cloud(dir / c.name);
+        expect_same_cloud(cloud, back, 0.0);
+        expect_same_normals(cloud, back);
+        // Read as before normals were read: the same points and labels.
+        const PointCloud old = read_cloud(dir / c.name, without);
+        EXPECT_TRUE(old.normals.empty());
+        expect_same_cloud(cloud, old, 0.0);
+        // Left out on request: the file of the cloud without normals.
+        io::WriteOptions no = c.options;
+        no.write_normals = false;
+        PointCloud plain = cloud;
+        plain.normals.clear();
+        write_cloud(dir / ("no_" + c.name), cloud, no);
+        write_cloud(dir / ("plain_" + c.name), plain, c.options);
+        EXPECT_EQ(read_bytes(dir / ("no_" + c.name)), read_bytes(dir / ("plain_" + c.name)));
+    }
+    EXPECT_EQ(read_bytes(dir / "n.csv").rfind("x,y,z,nx,ny,nz,label\n", 0), 0u);
+    EXPECT_EQ(read_bytes(dir / "n.pts").rfind("150\nx y z nx ny nz label\n", 0), 0u);
+}
+
+TEST(CloudIo, NormalsOfTheWrongCountLeaveThePreviousFileAndNoTemporary) {
+    TempDir dir;
+    PointCloud cloud = sample_cloud(10, 36, false, false);
+    write_cloud(dir / "keep.pcd", cloud);
+    const std::string before = read_bytes(dir / "keep.pcd");
+    cloud.normals.assign(3, Vec3f(0, 0, 1));
+    for (bool write_normals : {true, false}) {
+        io::WriteOptions o;
+        o.write_normals = write_normals;
+        for (const char* name : {"keep.pcd", "new.ply", "new.xyz"}) {
+            expect_error([&] { write_cloud(dir / name, cloud, o); }, ErrorCode::kInvalidParameter,
+                         "the cloud has 3 normals for 10 points");
+        }
+    }
+    EXPECT_EQ(read_bytes(dir / "keep.pcd"), before);
+    std::size_t files = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path())) ++files;
+    EXPECT_EQ(files, 1u);
+}
+
 }  // namespace
 }  // namespace surfgrow::test

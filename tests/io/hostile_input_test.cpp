@@ -56,6 +56,8 @@ struct Sample {
 std::vector<Sample> valid_samples() {
     const PointCloud cloud = sample_cloud(12, 41, true, true);
     const PointCloud geo = georeferenced_cloud(6, 42);
+    PointCloud normals = sample_cloud(8, 44, true, true);
+    add_normals(normals, 45);
     std::vector<Sample> out;
     for (auto enc : {io::PlyEncoding::kAscii, io::PlyEncoding::kBinaryLittleEndian,
                      io::PlyEncoding::kBinaryBigEndian}) {
@@ -65,6 +67,8 @@ std::vector<Sample> valid_samples() {
                        written([&](std::ostream& o) { io::write_ply(o, cloud, enc); })});
         out.push_back({"geo_" + e + ".ply", CloudFormat::kPly, ascii,
                        written([&](std::ostream& o) { io::write_ply(o, geo, enc); })});
+        out.push_back({"normals_" + e + ".ply", CloudFormat::kPly, ascii,
+                       written([&](std::ostream& o) { io::write_ply(o, normals, enc); })});
     }
     // Faces after the vertices: a cut inside them must be noticed too.
     std::string mesh = written([&](std::ostream& o) {
@@ -85,9 +89,13 @@ std::vector<Sample> valid_samples() {
                        written([&](std::ostream& o) { io::write_pcd(o, cloud, enc); })});
         out.push_back({"geo_" + e + ".pcd", CloudFormat::kPcd, ascii,
                        written([&](std::ostream& o) { io::write_pcd(o, geo, enc); })});
+        out.push_back({"normals_" + e + ".pcd", CloudFormat::kPcd, ascii,
+                       written([&](std::ostream& o) { io::write_pcd(o, normals, enc); })});
     }
     out.push_back({"labels.xyz", CloudFormat::kText, true,
                    written([&](std::ostream& o) { io::write_text_cloud(o, cloud, ' ', true); })});
+    out.push_back({"normals.csv", CloudFormat::kText, true,
+                   written([&](std::ostream& o) { io::write_text_cloud(o, normals, ',', true); })});
     return out;
 }
 
@@ -197,6 +205,22 @@ TEST(HostileInput, AbsurdHeadersFailWithoutLargeAllocations) {
         {"long_header_line.ply", CloudFormat::kPly,
          "ply\ncomment " + std::string(200000, 'a') + "\n"},
         {"wide_row.xyz", CloudFormat::kText, std::string(200000, '1') + "\n"},
+        {"huge_normals.ply", CloudFormat::kPly,
+         "ply\nformat ascii 1.0\nelement vertex 1000000000\n" + xyz_f +
+             "property float nx\nproperty float ny\nproperty list uchar int idx\n"
+             "property double nz\nend_header\n1 2 3 0 0 0 1\n"},
+        {"huge_normals_bin.ply", CloudFormat::kPly,
+         "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\n" + xyz_f +
+             "property list uchar int idx\nproperty float nx\nproperty float ny\n"
+             "property float nz\nend_header\n" +
+             std::string(30, '\0')},
+        {"huge_normals.pcd", CloudFormat::kPcd,
+         "FIELDS x y z normal_x normal_y normal_z\nSIZE 4 4 4 4 4 4\nTYPE F F F F F F\n"
+         "POINTS 1000000000\nDATA ascii\n1 2 3 0 0 1\n"},
+        {"huge_normals_bin.pcd", CloudFormat::kPcd,
+         "FIELDS x y z normal_x normal_y normal_z\nSIZE 4 4 4 4 4 4\nTYPE F F F F F F\n"
+         "POINTS 1000000000\nDATA binary\n" +
+             std::string(24, '\0')},
     };
     for (const auto& c : cases) {
         SCOPED_TRACE(c.name);

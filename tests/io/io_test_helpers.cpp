@@ -1,5 +1,6 @@
 #include "io_test_helpers.hpp"
 
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -31,6 +32,42 @@ PointCloud georeferenced_cloud(std::size_t n, uint64_t seed) {
     cloud.offset = Vec3d(512345, 5412345, 312);
     for (std::size_t i = 0; i < n; ++i) cloud.points.emplace_back(uni(rng), uni(rng), uni(rng));
     return cloud;
+}
+
+void add_normals(PointCloud& cloud, uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<float> gauss(0.0f, 1.0f);
+    cloud.normals.clear();
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        Vec3f n(gauss(rng), gauss(rng), gauss(rng));
+        cloud.normals.push_back(n / n.norm());
+    }
+    const float tricky = std::bit_cast<float>(0x15ae43fdU);  // 7.038531e-26
+    const Vec3f special[] = {
+        {tricky, -tricky, 1.0f},
+        {std::numeric_limits<float>::quiet_NaN(), 0.0f, -0.0f},
+        {std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::max(), 0.1f},
+        {-1.0f, std::numeric_limits<float>::min(), 1e-7f},
+    };
+    for (std::size_t k = 0; k < std::size(special) && k < cloud.size(); ++k) {
+        cloud.normals[(k * 5 + 1) % cloud.size()] = special[k];
+    }
+}
+
+void expect_same_normals(const PointCloud& expected, const PointCloud& actual) {
+    ASSERT_EQ(expected.normals.size(), actual.normals.size());
+    for (std::size_t i = 0; i < expected.normals.size(); ++i) {
+        for (int a = 0; a < 3; ++a) {
+            const float e = expected.normals[i][a];
+            const float g = actual.normals[i][a];
+            if (std::isnan(e)) {
+                ASSERT_TRUE(std::isnan(g)) << "normal " << i << " axis " << a;
+            } else {
+                ASSERT_EQ(std::bit_cast<uint32_t>(e), std::bit_cast<uint32_t>(g))
+                    << "normal " << i << " axis " << a << ": " << e << " came back as " << g;
+            }
+        }
+    }
 }
 
 void expect_same_cloud(const PointCloud& expected, const PointCloud& actual, double tolerance) {

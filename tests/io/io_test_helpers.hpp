@@ -22,6 +22,14 @@ PointCloud sample_cloud(std::size_t n, uint64_t seed, bool with_nan, bool with_l
 /// The same points, georeferenced: offset (512345, 5412345, 312) and points within +-50 m.
 PointCloud georeferenced_cloud(std::size_t n, uint64_t seed);
 
+/// Gives `cloud` one normal per point: seeded unit vectors, and at fixed places values that try
+/// the ASCII round trip: NaN, -0, subnormals, FLT_MAX, +-7.038531e-26 (whose shortest text,
+/// read as a double and then rounded to float, gives the next float instead).
+void add_normals(PointCloud& cloud, uint64_t seed);
+
+/// Expects the same normals, bit for bit (NaN where NaN: text writes every NaN as "nan").
+void expect_same_normals(const PointCloud& expected, const PointCloud& actual);
+
 /// Point i in file coordinates (offset added back).
 inline Vec3d absolute(const PointCloud& cloud, std::size_t i) {
     return cloud.points[i].cast<double>() + cloud.offset;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -299,6 +300,144 @@ TEST(Pcd, CompressedBlocksThatLieOrAreCorruptAreRejected) {
     tiny += "abcd";
     expect_error([&] { (void)read_pcd(huge + tiny, "c.pcd"); }, ErrorCode::kMalformedInput,
                  "cannot hold 3600000000 bytes");
+}
+
+// ---- normals ---------------------------------------------------------------------------------
+
+TEST(Pcd, NormalsAndLabelsRoundTripBitForBitInEveryDataKind) {
+    PointCloud cloud = sample_cloud(400, 71, true, true);
+    add_normals(cloud, 72);
+    for (PcdEncoding enc : kAllEncodings) {
+        SCOPED_TRACE(std::string(io::to_string(enc)));
+        const std::string bytes = pcd_of(cloud, enc);
+        EXPECT_NE(bytes.find("FIELDS x y z normal_x normal_y normal_z label\nSIZE 4 4 4 4 4 4 4\n"
+                             "TYPE F F F F F F I\nCOUNT 1 1 1 1 1 1 1\n"),
+                  std::string::npos);
+        const PointCloud back = read_pcd(bytes, "n.pcd");
+        expect_same_cloud(cloud, back, 0.0);
+        expect_same_normals(cloud, back);
+    }
+}
+
+TEST(Pcd, NormalsStayF4BesideF8Coordinates) {
+    PointCloud cloud = georeferenced_cloud(300, 73);
+    add_normals(cloud, 74);
+    for (PcdEncoding enc : kAllEncodings) {
+        SCOPED_TRACE(std::string(io::to_string(enc)));
+        const std::string bytes = pcd_of(cloud, enc);
+        EXPECT_NE(bytes.find("FIELDS x y z normal_x normal_y normal_z\nSIZE 8 8 8 4 4 4\n"
+                             "TYPE F F F F F F\n"),
+                  std::string::npos);
+        const PointCloud back = read_pcd(bytes, "geo.pcd");
+        expect_same_cloud(cloud, back, 1e-5);
+        expect_same_normals(cloud, back);
+    }
+}
+
+TEST(Pcd, WriteNormalsFalseWritesTheBytesOfACloudWithoutNormals) {
+    const PointCloud plain = sample_cloud(60, 75, true, true);
+    PointCloud with = plain;
+    add_normals(with, 76);
+    io::ReadOptions off;
+    off.read_normals = false;
+    for (PcdEncoding enc : kAllEncodings) {
+        SCOPED_TRACE(std::string(io::to_string(enc)));
+        const std::string left_out =
+            written([&](std::ostream& o) { write_pcd(o, with, enc, true, false); });
+        EXPECT_EQ(left_out, pcd_of(plain, enc));
+        EXPECT_TRUE(read_pcd(left_out, "n.pcd").normals.empty());
+        // A file with normals read without them: the same points and labels.
+        const PointCloud back = read_pcd(pcd_of(with, enc), "n.pcd", off);
+        EXPECT_TRUE(back.normals.empty());
+        expect_same_cloud(plain, back, 0.0);
+    }
+}
+
+TEST(Pcd, NormalsOfTheWrongCountAreRefusedBeforeWriting) {
+    PointCloud cloud = sample_cloud(10, 77, false, true);
+    cloud.normals.assign(11, Vec3f(0, 0, 1));
+    for (PcdEncoding enc : kAllEncodings) {
+        for (bool write_normals : {true, false}) {
+            std::ostringstream out;
+            expect_error([&] { write_pcd(out, cloud, enc, true, write_normals); },
+                         ErrorCode::kInvalidParameter, "the cloud has 11 normals for 10 points");
+            EXPECT_TRUE(out.str().empty());
+        }
+    }
+}
+
+// pcl::PointNormal as PCL lays it out: padding after x y z and after the normal, curvature.
+TEST(Pcd, ReadsPclPointNormalInEveryDataKind) {
+    const std::string fields = "x y z _ normal_x normal_y normal_z _ curvature _";
+    const std::string sizes = "4 4 4 1 4 4 4 1 4 1";
+    const std::string types = "F F F U F F F U F U";
+    const std::string counts = "1 1 1 4 1 1 1 4 1 12";
+    const float xyz[2][3] = {{1, 2, 3}, {-4, 5.5f, 6}};
+    const float nrm[2][3] = {{0.6f, 0, -0.8f}, {0, -1, 0}};
+    std::string raw, soa;
+    for (int i = 0; i < 2; ++i) {
+        for (float v : xyz[i]) append_little_endian(raw, v);
+        raw.append(4, '\0');
+        for (float v : nrm[i]) append_little_endian(raw, v);
+        raw.append(4, '\0');
+        append_little_endian(raw, 0.01f);
+        raw.append(12, '\0');
+    }
+    for (int a = 0; a < 3; ++a) {
+        for (int i = 0; i < 2; ++i) append_little_endian(soa, xyz[i][a]);
+    }
+    for (int a = 0; a < 3; ++a) {
+        for (int i = 0; i < 2; ++i) append_little_endian(soa, nrm[i][a]);
+    }
+    for (int i = 0; i < 2; ++i) append_little_endian(soa, 0.01f);
+    const std::string pad4 = "0 0 0 0", pad12 = "0 0 0 0 0 0 0 0 0 0 0 0";
+    const std::string ascii = "1 2 3 " + pad4 + " 0.6 0 -0.8 " + pad4 + " 0.01 " + pad12 +
+                              "\n-4 5.5 6 " + pad4 + " 0 -1 0 " + pad4 + " 0.01 " + pad12 + "\n";
+    const std::string files[] = {
+        header(fields, sizes, types, counts, 2, 1, "ascii") + ascii,
+        header(fields, sizes, types, counts, 2, 1, "binary") + raw,
+        header(fields, sizes, types, counts, 2, 1, "binary_compressed") + lzf_block(soa),
+    };
+    for (const std::string& f : files) {
+        const PointCloud c = read_pcd(f, "pn.pcd");
+        EXPECT_EQ(c.points, (std::vector<Vec3f>{{1, 2, 3}, {-4, 5.5f, 6}}));
+        EXPECT_EQ(c.normals, (std::vector<Vec3f>{{0.6f, 0, -0.8f}, {0, -1, 0}}));
+    }
+}
+
+TEST(Pcd, ReadsNormalsOfAnyTypeOnlyWhenAllThreeAreUsable) {
+    // F8 and I2 normals, in another order than x y z.
+    std::string bin = header("normal_z x y z normal_x normal_y", "2 4 4 4 8 1", "I F F F F I",
+                             "1 1 1 1 1 1", 1, 1, "binary");
+    append_little_endian<int16_t>(bin, -2);
+    for (float v : {1.0f, 2.0f, 3.0f}) append_little_endian(bin, v);
+    append_little_endian(bin, 0.5);
+    append_little_endian<int8_t>(bin, 7);
+    const PointCloud c = read_pcd(bin, "t.pcd");
+    EXPECT_EQ(c.points.at(0), Vec3f(1, 2, 3));
+    EXPECT_EQ(c.normals, (std::vector<Vec3f>{{0.5f, 7, -2}}));
+
+    // Two of three, or one with COUNT 3: read without normals, as before.
+    const std::string two =
+        header("x y z normal_x normal_y", "4 4 4 4 4", "F F F F F", "1 1 1 1 1", 1, 1, "ascii") +
+        "1 2 3 0 1\n";
+    EXPECT_TRUE(read_pcd(two, "two.pcd").normals.empty());
+    const std::string counted = header("x y z normal_x normal_y normal_z", "4 4 4 4 4 4",
+                                       "F F F F F F", "1 1 1 3 1 1", 1, 1, "ascii") +
+                                "1 2 3 0 0 0 1 0\n";
+    const PointCloud k = read_pcd(counted, "count.pcd");
+    EXPECT_TRUE(k.normals.empty());
+    EXPECT_EQ(k.points.at(0), Vec3f(1, 2, 3));
+
+    // A normal that is not a number is malformed, unless normals are switched off.
+    const std::string bad = header("x y z normal_x normal_y normal_z", "4 4 4 4 4 4", "F F F F F F",
+                                   "1 1 1 1 1 1", 1, 1, "ascii") +
+                            "1 2 3 0 zero 1\n";
+    expect_error([&] { (void)read_pcd(bad, "bad.pcd"); }, ErrorCode::kMalformedInput,
+                 "bad.pcd line 12: normal_y 'zero' is not a number");
+    io::ReadOptions off;
+    off.read_normals = false;
+    EXPECT_EQ(read_pcd(bad, "bad.pcd", off).points.at(0), Vec3f(1, 2, 3));
 }
 
 }  // namespace

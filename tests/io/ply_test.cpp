@@ -1,6 +1,7 @@
 // PLY: every encoding, scalar type and element layout the reader must handle, and its errors.
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 
 #include "io_test_helpers.hpp"
@@ -294,6 +295,149 @@ TEST(Ply, NonIntegerLabelsAreRejected) {
         "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
         "property float z\nproperty float label\nend_header\n1 2 3 4\n";
     EXPECT_EQ(read_ply(b, "lab.ply").labels, std::vector<int32_t>{4});
+}
+
+// ---- normals ---------------------------------------------------------------------------------
+
+TEST(Ply, NormalsAndLabelsRoundTripBitForBitInEveryEncoding) {
+    PointCloud cloud = sample_cloud(300, 51, true, true);
+    add_normals(cloud, 52);
+    for (PlyEncoding enc : kAllEncodings) {
+        SCOPED_TRACE(std::string(io::to_string(enc)));
+        const std::string bytes = ply_of(cloud, enc);
+        EXPECT_NE(bytes.find("property float z\nproperty float nx\nproperty float ny\n"
+                             "property float nz\nproperty int label\nend_header\n"),
+                  std::string::npos);
+        const PointCloud back = read_ply(bytes, "n.ply");
+        expect_same_cloud(cloud, back, 0.0);
+        expect_same_normals(cloud, back);
+    }
+}
+
+TEST(Ply, NormalsStayFloatBesideDoubleCoordinates) {
+    PointCloud cloud = georeferenced_cloud(200, 53);
+    add_normals(cloud, 54);
+    for (PlyEncoding enc : kAllEncodings) {
+        SCOPED_TRACE(std::string(io::to_string(enc)));
+        const std::string bytes = ply_of(cloud, enc);
+        EXPECT_NE(bytes.find("property double z\nproperty float nx\n"), std::string::npos);
+        const PointCloud back = read_ply(bytes, "geo.ply");
+        expect_same_cloud(cloud, back, 1e-5);
+        expect_same_normals(cloud, back);
+    }
+}
+
+TEST(Ply, WriteNormalsFalseWritesTheBytesOfACloudWithoutNormals) {
+    const PointCloud plain = sample_cloud(50, 55, true, true);
+    PointCloud with = plain;
+    add_normals(with, 56);
+    for (PlyEncoding enc : kAllEncodings) {
+        SCOPED_TRACE(std::string(io::to_string(enc)));
+        const std::string left_out =
+            written([&](std::ostream& o) { write_ply(o, with, enc, true, false, false); });
+        EXPECT_EQ(left_out, ply_of(plain, enc));
+        EXPECT_EQ(left_out.find("nx"), std::string::npos);
+        EXPECT_TRUE(read_ply(left_out, "n.ply").normals.empty());
+    }
+}
+
+TEST(Ply, ReadingWithoutNormalsGivesTheSamePointsAndLabels) {
+    PointCloud cloud = sample_cloud(120, 57, true, true);
+    add_normals(cloud, 58);
+    io::ReadOptions off;
+    off.read_normals = false;
+    for (PlyEncoding enc : kAllEncodings) {
+        SCOPED_TRACE(std::string(io::to_string(enc)));
+        const PointCloud back = read_ply(ply_of(cloud, enc), "n.ply", off);
+        EXPECT_TRUE(back.normals.empty());
+        expect_same_cloud(cloud, back, 0.0);
+    }
+}
+
+TEST(Ply, NormalsOfTheWrongCountAreRefusedBeforeWriting) {
+    PointCloud cloud = sample_cloud(10, 59, false, false);
+    cloud.normals.assign(9, Vec3f(0, 0, 1));
+    for (PlyEncoding enc : kAllEncodings) {
+        for (bool write_normals : {true, false}) {
+            std::ostringstream out;
+            expect_error([&] { write_ply(out, cloud, enc, true, false, write_normals); },
+                         ErrorCode::kInvalidParameter, "the cloud has 9 normals for 10 points");
+            EXPECT_TRUE(out.str().empty());
+        }
+    }
+}
+
+TEST(Ply, ReadsNormalsOfAnyTypeWhenAllThreeAreThere) {
+    // ASCII, double normals among other properties, not next to each other.
+    const std::string a =
+        "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty double nz\n"
+        "property float y\nproperty uchar red\nproperty double nx\nproperty float z\n"
+        "property float ny\nend_header\n1 0.25 2 255 0.5 3 -0.75\n4 1 5 0 0 6 0\n";
+    const PointCloud c = read_ply(a, "a.ply");
+    EXPECT_EQ(c.points[0], Vec3f(1, 2, 3));
+    ASSERT_EQ(c.normals.size(), 2u);
+    EXPECT_EQ(c.normals[0], Vec3f(0.5f, -0.75f, 0.25f));
+    EXPECT_EQ(c.normals[1], Vec3f(0, 0, 1));
+
+    // Binary big-endian with short normals (quantised) and a char one.
+    std::string b =
+        "ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+        "property float z\nproperty short nx\nproperty int16 ny\nproperty char nz\nend_header\n";
+    for (float f : {1.0f, 2.0f, 3.0f}) append_big_endian(b, f);
+    append_big_endian<int16_t>(b, -300);
+    append_big_endian<int16_t>(b, 7);
+    append_big_endian<int8_t>(b, -1);
+    EXPECT_EQ(read_ply(b, "b.ply").normals, (std::vector<Vec3f>{{-300, 7, -1}}));
+
+    // Only two of them, or one a list: no normals, the points as before.
+    const std::string two =
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+        "property float z\nproperty float nx\nproperty float ny\nend_header\n1 2 3 0 1\n";
+    EXPECT_TRUE(read_ply(two, "two.ply").normals.empty());
+    EXPECT_EQ(read_ply(two, "two.ply").points[0], Vec3f(1, 2, 3));
+    const std::string list =
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+        "property float z\nproperty float nx\nproperty float ny\nproperty list uchar float nz\n"
+        "end_header\n1 2 3 0 1 2 0.5 0.5\n";
+    EXPECT_TRUE(read_ply(list, "list.ply").normals.empty());
+    EXPECT_EQ(read_ply(list, "list.ply").points[0], Vec3f(1, 2, 3));
+}
+
+TEST(Ply, NormalsBesideListsInVerticesAreReadRecordByRecord) {
+    for (PlyEncoding enc : {PlyEncoding::kBinaryLittleEndian, PlyEncoding::kBinaryBigEndian}) {
+        SCOPED_TRACE(std::string(io::to_string(enc)));
+        const bool be = enc == PlyEncoding::kBinaryBigEndian;
+        std::string s = "ply\nformat " + std::string(io::to_string(enc)) +
+                        " 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                        "property float z\nproperty list uchar int idx\nproperty double nx\n"
+                        "property float ny\nproperty float nz\nend_header\n";
+        auto put = [&](auto v) { be ? append_big_endian(s, v) : append_little_endian(s, v); };
+        put(1.0f), put(2.0f), put(3.0f), put(uint8_t{2}), put(7), put(8);
+        put(0.5), put(0.25f), put(-1.0f);
+        put(4.0f), put(5.0f), put(6.0f), put(uint8_t{0});
+        put(-0.0), put(1.0f), put(0.0f);
+        const PointCloud c = read_ply(s, "lists.ply");
+        EXPECT_EQ(c.points, (std::vector<Vec3f>{{1, 2, 3}, {4, 5, 6}}));
+        ASSERT_EQ(c.normals.size(), 2u);
+        EXPECT_EQ(c.normals[0], Vec3f(0.5f, 0.25f, -1.0f));
+        EXPECT_TRUE(std::signbit(c.normals[1].x()));
+        EXPECT_EQ(c.normals[1], Vec3f(0, 1, 0));
+    }
+}
+
+TEST(Ply, NormalsCanBeSwitchedOffAndBadOnesAreMalformed) {
+    PointCloud cloud = sample_cloud(20, 60, false, false);
+    add_normals(cloud, 61);
+    io::ReadOptions off;
+    off.read_normals = false;
+    EXPECT_TRUE(read_ply(ply_of(cloud, PlyEncoding::kAscii), "n.ply", off).normals.empty());
+    const std::string a =
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+        "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+        "end_header\n1 2 3 0 up 1\n";
+    expect_error([&] { (void)read_ply(a, "bad.ply"); }, ErrorCode::kMalformedInput,
+                 "bad.ply line 11: 'up' is not a number (vertex 0, property ny)");
+    EXPECT_EQ(read_ply(a, "bad.ply", off).points.at(0), Vec3f(1, 2, 3));
 }
 
 }  // namespace

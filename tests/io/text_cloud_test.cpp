@@ -1,5 +1,8 @@
 // Text clouds: separators, comments, header rows, .pts counts, offsets, and malformed rows.
+#include <bit>
 #include <cmath>
+#include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -114,6 +117,107 @@ TEST(TextCloud, MalformedRowsNameTheFileAndLine) {
                                   "wide.csv");
         },
         ErrorCode::kMalformedInput, "wide.csv line 1: more than 4096 columns");
+}
+
+// ---- normals ---------------------------------------------------------------------------------
+
+TEST(TextCloud, NormalsRoundTripBitForBitWithAndWithoutLabels) {
+    PointCloud cloud = sample_cloud(300, 81, true, true);
+    add_normals(cloud, 82);
+    PointCloud no_labels = cloud;
+    no_labels.labels.clear();
+
+    const std::string plain = written([&](std::ostream& o) { write_text_cloud(o, cloud); });
+    EXPECT_EQ(plain.rfind("x y z nx ny nz\n", 0), 0u);
+    const PointCloud p = read_text_cloud(plain, "n.xyz");
+    expect_same_cloud(no_labels, p, 0.0);
+    expect_same_normals(cloud, p);
+
+    const std::string labelled =
+        written([&](std::ostream& o) { write_text_cloud(o, cloud, ',', true); });
+    EXPECT_EQ(labelled.rfind("x,y,z,nx,ny,nz,label\n", 0), 0u);
+    const PointCloud l = read_text_cloud(labelled, "n.csv");
+    expect_same_cloud(cloud, l, 0.0);
+    expect_same_normals(cloud, l);
+
+    const std::string pts =
+        written([&](std::ostream& o) { write_text_cloud(o, no_labels, ' ', true, true); });
+    EXPECT_EQ(pts.rfind("300\nx y z nx ny nz\n", 0), 0u);
+    expect_same_normals(cloud, read_text_cloud(pts, "n.pts"));
+
+    PointCloud geo = georeferenced_cloud(200, 83);
+    add_normals(geo, 84);
+    const PointCloud g =
+        read_text_cloud(written([&](std::ostream& o) { write_text_cloud(o, geo); }), "g.xyz");
+    expect_same_cloud(geo, g, 1e-5);
+    expect_same_normals(geo, g);
+}
+
+// The writers' shortest text for every float: read straight as float it comes back exactly.
+// (Read as a double and then rounded to float, 7.038531e-26 comes back as the next float.)
+TEST(TextCloud, NormalsOfRandomFloatBitsComeBackExactly) {
+    PointCloud cloud;
+    for (int i = 0; i < 100000; ++i) cloud.points.emplace_back(float(i), 0.0f, 0.0f);
+    add_normals(cloud, 85);  // the special values at 1, 6, 11, 16
+    std::mt19937_64 rng(86);
+    for (std::size_t i = 20; i < cloud.size(); ++i) {
+        for (int a = 0; a < 3; ++a) {
+            cloud.normals[i][a] = std::bit_cast<float>(static_cast<uint32_t>(rng()));
+        }
+    }
+    const PointCloud back =
+        read_text_cloud(written([&](std::ostream& o) { write_text_cloud(o, cloud); }), "r.xyz");
+    expect_same_normals(cloud, back);
+}
+
+TEST(TextCloud, WriteNormalsFalseWritesTheTextOfACloudWithoutNormals) {
+    const PointCloud plain = sample_cloud(40, 87, true, true);
+    PointCloud with = plain;
+    add_normals(with, 88);
+    for (bool labels : {false, true}) {
+        const std::string left_out =
+            written([&](std::ostream& o) { write_text_cloud(o, with, ' ', labels, false, false); });
+        EXPECT_EQ(left_out,
+                  written([&](std::ostream& o) { write_text_cloud(o, plain, ' ', labels); }));
+        EXPECT_TRUE(read_text_cloud(left_out, "t.xyz").normals.empty());
+    }
+    // A file with normals read without them: the same points and labels.
+    io::ReadOptions off;
+    off.read_normals = false;
+    const PointCloud back = read_text_cloud(
+        written([&](std::ostream& o) { write_text_cloud(o, with, ';', true); }), "t.csv", off);
+    EXPECT_TRUE(back.normals.empty());
+    expect_same_cloud(plain, back, 0.0);
+}
+
+TEST(TextCloud, NormalsOfTheWrongCountAreRefusedBeforeWriting) {
+    PointCloud cloud = sample_cloud(10, 89, false, false);
+    cloud.normals.assign(1, Vec3f(0, 0, 1));
+    for (bool write_normals : {true, false}) {
+        std::ostringstream out;
+        expect_error([&] { write_text_cloud(out, cloud, ' ', false, true, write_normals); },
+                     ErrorCode::kInvalidParameter, "the cloud has 1 normals for 10 points");
+        EXPECT_TRUE(out.str().empty());
+    }
+}
+
+TEST(TextCloud, NormalColumnsAreReadByNameWhenAllThreeAreThere) {
+    // CloudCompare's header, any order and case.
+    const PointCloud c = read_text_cloud("//X,Y,Z,Nz,R,Nx,Ny\n1,2,3,0.5,255,-1,0\n", "cc.csv");
+    EXPECT_EQ(c.points, (std::vector<Vec3f>{{1, 2, 3}}));
+    EXPECT_EQ(c.normals, (std::vector<Vec3f>{{-1, 0, 0.5f}}));
+    // Two of three, or no header: no normals.
+    EXPECT_TRUE(read_text_cloud("x y z nx ny\n1 2 3 0 1\n", "two.xyz").normals.empty());
+    EXPECT_TRUE(read_text_cloud("1 2 3 0 0 1\n", "bare.xyz").normals.empty());
+    // Every row needs them, as numbers.
+    expect_error([] { (void)read_text_cloud("x y z nx ny nz\n1 2 3 0 0 1\n4 5 6\n", "s.xyz"); },
+                 ErrorCode::kMalformedInput, "s.xyz line 3: expected at least 6 values, found 3");
+    expect_error([] { (void)read_text_cloud("x,y,z,nx,ny,nz\n1,2,3,0,,1\n", "e.csv"); },
+                 ErrorCode::kMalformedInput, "e.csv line 2: normal '' in column 5 is not a number");
+    io::ReadOptions off;
+    off.read_normals = false;
+    EXPECT_EQ(read_text_cloud("x,y,z,nx,ny,nz\n1,2,3,0,,1\n", "e.csv", off).points,
+              (std::vector<Vec3f>{{1, 2, 3}}));
 }
 
 }  // namespace

@@ -30,6 +30,11 @@ struct PointCloud {
     /// Optional per-point integer label from the file (ground-truth primitive id, segment label).
     std::vector<int32_t> labels;
 
+    /// Optional per-point normal from the file or the caller (PLY nx ny nz, PCD normal_x ...):
+    /// empty when unknown, else one per point. Only carried through reading and writing; the
+    /// growing estimates its own.
+    std::vector<Vec3f> normals;
+
     [[nodiscard]] std::size_t size() const { return points.size(); }
     [[nodiscard]] bool empty() const { return points.empty(); }
     [[nodiscard]] bool has_scan_index() const {
@@ -37,6 +42,9 @@ struct PointCloud {
     }
     [[nodiscard]] bool has_labels() const {
         return !labels.empty() && labels.size() == points.size();
+    }
+    [[nodiscard]] bool has_normals() const {
+        return !normals.empty() && normals.size() == points.size();
     }
 };
 

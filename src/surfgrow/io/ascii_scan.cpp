@@ -7,7 +7,10 @@
 
 namespace surfgrow::io {
 
-bool parse_double(std::string_view token, double& out) {
+namespace {
+
+template <typename T>
+bool parse_floating(std::string_view token, T& out) {
     const char* b = token.data();
     const char* const e = b + token.size();
     // from_chars rejects the '+' that C's strtod (and many writers) accept.
@@ -26,8 +29,22 @@ bool parse_double(std::string_view token, double& out) {
     if (n >= sizeof buf) return false;
     std::memcpy(buf, b, n);
     buf[n] = '\0';
-    out = std::strtod(buf, nullptr);
+    if constexpr (sizeof(T) == sizeof(float)) {
+        out = std::strtof(buf, nullptr);
+    } else {
+        out = std::strtod(buf, nullptr);
+    }
     return true;
+}
+
+}  // namespace
+
+bool parse_double(std::string_view token, double& out) {
+    return parse_floating(token, out);
+}
+
+bool parse_float(std::string_view token, float& out) {
+    return parse_floating(token, out);
 }
 
 bool parse_uint(std::string_view token, uint64_t& out) {

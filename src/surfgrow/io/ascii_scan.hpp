@@ -15,6 +15,10 @@ namespace surfgrow::io {
 /// strtod. False when any character is left over.
 [[nodiscard]] bool parse_double(std::string_view token, double& out);
 
+/// The same, rounding the decimal straight to float: every float's shortest text (to_chars)
+/// reads back as that float, which a double rounded to float does not guarantee (7.038531e-26).
+[[nodiscard]] bool parse_float(std::string_view token, float& out);
+
 /// Parses a whole token as an unsigned decimal integer (no sign); false on overflow.
 [[nodiscard]] bool parse_uint(std::string_view token, uint64_t& out);
 

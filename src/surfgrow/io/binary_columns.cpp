@@ -56,6 +56,27 @@ void label_kernel(const char* p, std::size_t stride, std::size_t n, int32_t* lab
     }
 }
 
+// normals[i][axis] = value i of the column, as float (any type: normals need no offset).
+template <typename T, bool kSwap>
+void normal_kernel(const char* p, std::size_t stride, std::size_t n, Vec3f* normals, int axis) {
+    for (std::size_t i = 0; i < n; ++i) {
+        normals[i].data()[axis] = static_cast<float>(load_value<T, kSwap>(p + i * stride));
+    }
+}
+
+void read_normal_axis(const char* data, const Column& c, std::size_t n, bool swap, Vec3f* normals,
+                      int axis) {
+    visit_scalar(c.type, [&](auto tag) {
+        using T = decltype(tag);
+        const char* p = data + c.base;
+        if (swap) {
+            normal_kernel<T, true>(p, c.stride, n, normals, axis);
+        } else {
+            normal_kernel<T, false>(p, c.stride, n, normals, axis);
+        }
+    });
+}
+
 void read_axis(const char* data, const Column& c, std::size_t n, bool swap, Vec3f* points, int axis,
                double offset) {
     visit_scalar(c.type, [&](auto tag) {
@@ -102,9 +123,11 @@ std::optional<Vec3d> find_offset(const char* data, std::size_t n, const std::arr
 }  // namespace
 
 void read_columns(const char* data, std::size_t n, const std::array<Column, 3>& xyz,
-                  const Column* label, bool swap, std::string_view source, PointCloud& cloud) {
+                  const Column* label, const std::array<Column, 3>* normals, bool swap,
+                  std::string_view source, PointCloud& cloud) {
     cloud.points.resize(n);
     if (label) cloud.labels.resize(n);
+    if (normals) cloud.normals.resize(n);
     if (n == 0) return;  // data() may be null, and memcpy must not see that
     Vec3f* points = cloud.points.data();
     if (is_packed_float_xyz(xyz, swap)) {
@@ -125,6 +148,11 @@ void read_columns(const char* data, std::size_t n, const std::array<Column, 3>& 
                 cloud.offset = *off;
                 for (int a = 0; a < 3; ++a) read_axis(data, xyz[a], n, swap, points, a, (*off)[a]);
             }
+        }
+    }
+    if (normals) {
+        for (int a = 0; a < 3; ++a) {
+            read_normal_axis(data, (*normals)[a], n, swap, cloud.normals.data(), a);
         }
     }
     if (label) {

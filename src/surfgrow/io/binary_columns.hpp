@@ -1,4 +1,4 @@
-// Extracting x, y, z and labels from fixed-size binary records (PLY and PCD bodies).
+// Extracting x, y, z, normals and labels from fixed-size binary records (PLY and PCD bodies).
 #pragma once
 
 #include <array>
@@ -17,13 +17,14 @@ struct Column {
     ScalarType type = ScalarType::kFloat32;
 };
 
-/// Fills cloud.points with n points from the x, y, z columns (and cloud.labels from `label`
-/// when given), applying the offset rule when a coordinate type is wider than float. `swap`
-/// reverses each value's bytes (big-endian data). The caller has checked that every column
-/// lies inside `data`. Throws Error(kMalformedInput) naming `source` for a label that is not an
-/// integer.
+/// Fills cloud.points with n points from the x, y, z columns (cloud.labels from `label` and
+/// cloud.normals from the three `normals` columns, converted to float, when given), applying the
+/// offset rule when a coordinate type is wider than float. `swap` reverses each value's bytes
+/// (big-endian data). The caller has checked that every column lies inside `data`. Throws
+/// Error(kMalformedInput) naming `source` for a label that is not an integer.
 void read_columns(const char* data, std::size_t n, const std::array<Column, 3>& xyz,
-                  const Column* label, bool swap, std::string_view source, PointCloud& cloud);
+                  const Column* label, const std::array<Column, 3>* normals, bool swap,
+                  std::string_view source, PointCloud& cloud);
 
 /// Bytes after the last record are tolerated only as padding (zeros or blanks: PCL pads binary
 /// PCD files with zeros), so a header that undercounts its data does not go unnoticed. Throws

@@ -7,6 +7,7 @@
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/ascii_scan.hpp"
 #include "surfgrow/io/atomic_output.hpp"
+#include "surfgrow/io/cloud_layout.hpp"
 #include "surfgrow/io/file_bytes.hpp"
 #include "surfgrow/io/io_error.hpp"
 #include "surfgrow/io/pcd.hpp"
@@ -127,6 +128,8 @@ void write_cloud(const fs::path& path, const PointCloud& cloud, const WriteOptio
             cat({path.string(), ": cannot tell the format to write from the extension '",
                  path.extension().string(), "' (use .ply, .pcd, .xyz, .txt, .csv or .pts)"}));
     }
+    // A cloud the writers would refuse (normals not one per point) leaves no temporary behind.
+    (void)layout_for(cloud, options.write_labels, options.write_normals);
     const std::string ext = lower_extension(path);
     const char delimiter = ext == ".csv" ? ',' : ' ';
     const bool count_line = ext == ".pts";  // Leica PTS starts with the point count
@@ -134,14 +137,15 @@ void write_cloud(const fs::path& path, const PointCloud& cloud, const WriteOptio
         switch (*format) {
             case CloudFormat::kPly:
                 write_ply(out, cloud, options.ply_encoding, options.write_labels,
-                          options.write_scans);
+                          options.write_scans, options.write_normals);
                 break;
             case CloudFormat::kPcd:
-                write_pcd(out, cloud, options.pcd_encoding, options.write_labels);
+                write_pcd(out, cloud, options.pcd_encoding, options.write_labels,
+                          options.write_normals);
                 break;
             case CloudFormat::kText:
                 write_text_cloud(out, cloud, delimiter, options.write_labels && options.text_labels,
-                                 count_line);
+                                 count_line, options.write_normals);
                 break;
         }
     });

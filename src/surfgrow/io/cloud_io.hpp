@@ -35,9 +35,10 @@ namespace surfgrow::io {
 
 /// Writes `cloud` to `path` atomically (a temporary file renamed into place), in options.format
 /// or else the extension's format (.csv: comma-separated; .pts: a first line with the point
-/// count). Throws Error(kUnknownFormat) for an
-/// unknown extension without options.format, Error(kCannotWrite) when the file cannot be
-/// written.
+/// count). Normals (PointCloud::normals) and labels are written as options says (WriteOptions).
+/// Throws Error(kUnknownFormat) for an unknown extension without options.format,
+/// Error(kInvalidParameter) for normals that are not one per point (nothing is written, `path`
+/// keeps its old content), Error(kCannotWrite) when the file cannot be written.
 void write_cloud(const std::filesystem::path& path, const PointCloud& cloud,
                  const WriteOptions& options = {});
 

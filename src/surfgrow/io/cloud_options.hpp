@@ -29,12 +29,25 @@ struct ReadOptions {
     /// PointCloud::labels when the file has one.
     bool read_labels = true;
     std::string label_field = "label";
+    /// Read per-point normals into PointCloud::normals when the file has all three of them, of
+    /// any scalar type: PLY properties nx ny nz, PCD fields normal_x normal_y normal_z (COUNT 1),
+    /// text header columns nx ny nz. A file with only some of them, or with one unusable (a PLY
+    /// list, a PCD COUNT above 1), is read without normals.
+    bool read_normals = true;
     /// PLY: read the scan each point came from (property "scan") and the scans' origins
     /// ("comment surfgrow scan_origin k x y z" header lines) into PointCloud::scan_index and
     /// scan_origins, so normals can face their own sensor. Files without those comments are
     /// read as before.
     bool read_scans = true;
 };
+
+/// What the commands read: points, labels and scans, not the normals they never use (12 bytes a
+/// point, and time).
+inline const ReadOptions kPointsOnly = [] {
+    ReadOptions o;
+    o.read_normals = false;
+    return o;
+}();
 
 struct WriteOptions {
     /// Write this format whatever the extension; nullopt: from the extension.
@@ -43,7 +56,12 @@ struct WriteOptions {
     PcdEncoding pcd_encoding = PcdEncoding::kBinary;
     /// PLY and PCD: write PointCloud::labels (property / field "label") when the cloud has them.
     bool write_labels = true;
-    /// Text: add the labels as a fourth column, under a header row "x y z label".
+    /// Write PointCloud::normals when the cloud has them, as float: PLY properties nx ny nz and
+    /// PCD fields normal_x normal_y normal_z after x y z, text columns 4-6 under a header row
+    /// "x y z nx ny nz". A cloud whose normals are not one per point is refused either way.
+    bool write_normals = true;
+    /// Text: add the labels as a last column, under a header row "x y z label" (or
+    /// "x y z nx ny nz label" with normals).
     bool text_labels = false;
     /// PLY: write PointCloud::scan_index as "property uint scan" and scan_origins as header
     /// comments, when the cloud has them (other formats never carry them).

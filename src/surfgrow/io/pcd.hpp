@@ -11,7 +11,8 @@ namespace surfgrow::io {
 
 /// Reads a PCD file held in memory: DATA ascii, binary or binary_compressed (LZF); fields of
 /// any PCD type and COUNT, `_` padding fields; x, y, z kept, options.label_field read into
-/// cloud.labels; every point kept in order, NaN ones and those of organized clouds included.
+/// cloud.labels and (options.read_normals) normal_x normal_y normal_z into cloud.normals; every
+/// point kept in order, NaN ones and those of organized clouds included.
 /// A VIEWPOINT other than the default "0 0 0 1 0 0 0" sets cloud.viewpoint (its translation).
 /// `source` names the file in messages. Throws Error(kMalformedInput) for a file that breaks the
 /// format, is truncated or whose counts do not match its size.
@@ -19,10 +20,13 @@ namespace surfgrow::io {
                                   const ReadOptions& options = {});
 
 /// Writes a v0.7 PCD: fields x y z (F4, or F8 with the offset added back when cloud.offset is
-/// non-zero) and label (I4) when `write_labels` and the cloud has labels; WIDTH = POINTS,
-/// HEIGHT 1; VIEWPOINT from cloud.viewpoint (identity rotation). Throws Error(kCannotWrite)
-/// when a binary_compressed body would exceed the format's 4 GiB limit.
+/// non-zero), normal_x normal_y normal_z (F4, PCL's PointNormal names) when `write_normals` and
+/// the cloud has normals, and label (I4) when `write_labels` and the cloud has labels;
+/// WIDTH = POINTS, HEIGHT 1; VIEWPOINT from cloud.viewpoint (identity rotation). Throws
+/// Error(kCannotWrite) when a binary_compressed body would exceed the format's 4 GiB limit, and
+/// Error(kInvalidParameter), writing nothing, when the cloud's normals are not one per point.
 void write_pcd(std::ostream& out, const PointCloud& cloud,
-               PcdEncoding encoding = PcdEncoding::kBinary, bool write_labels = true);
+               PcdEncoding encoding = PcdEncoding::kBinary, bool write_labels = true,
+               bool write_normals = true);
 
 }  // namespace surfgrow::io

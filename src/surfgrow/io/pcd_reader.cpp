@@ -30,6 +30,8 @@ constexpr std::size_t kMaxHeaderLine = std::size_t{1} << 16;
 constexpr uint64_t kMaxLzfRatio = 90;
 
 constexpr std::array<std::string_view, 3> kAxisNames{"x", "y", "z"};
+// PCL's names (pcl::Normal, pcl::PointNormal).
+constexpr std::array<std::string_view, 3> kNormalNames{"normal_x", "normal_y", "normal_z"};
 
 struct Field {
     std::string_view name;  // views into the file's bytes
@@ -212,14 +214,23 @@ Header parse_header(std::string_view bytes, std::string_view src) {
 struct FieldLayout {
     std::array<std::size_t, 3> xyz{};
     std::optional<std::size_t> label;
+    std::optional<std::array<std::size_t, 3>> normals;  // all three or none
     bool wide = false;  // a coordinate type wider than float: the offset rule applies
 };
 
 FieldLayout field_layout(const Header& h, std::string_view src, const ReadOptions& options) {
     FieldLayout layout;
     std::array<bool, 3> found{false, false, false};
+    // The first field of each normal name decides; one with COUNT above 1 means no normals.
+    std::array<std::optional<std::size_t>, 3> normal;
+    bool normals_usable = options.read_normals;
     for (std::size_t i = 0; i < h.fields.size(); ++i) {
         const Field& f = h.fields[i];
+        for (std::size_t a = 0; a < 3; ++a) {
+            if (f.name != kNormalNames[a] || normal[a]) continue;
+            normal[a] = i;
+            normals_usable = normals_usable && f.count == 1;
+        }
         for (std::size_t a = 0; a < 3; ++a) {
             if (f.name != kAxisNames[a]) continue;
             if (found[a]) throw_malformed(src, cat({"field ", f.name, " appears twice"}));
@@ -241,6 +252,9 @@ FieldLayout field_layout(const Header& h, std::string_view src, const ReadOption
     }
     for (std::size_t a = 0; a < 3; ++a) {
         if (!found[a]) throw_malformed(src, cat({"the header has no field ", kAxisNames[a]}));
+    }
+    if (normals_usable && normal[0] && normal[1] && normal[2]) {
+        layout.normals = std::array<std::size_t, 3>{*normal[0], *normal[1], *normal[2]};
     }
     return layout;
 }
@@ -271,6 +285,7 @@ void read_ascii(std::string_view bytes, const Header& h, const FieldLayout& layo
     const uint64_t fit = body.size() / values / 2 + 1;
     cloud.points.reserve(std::min(h.points, fit));
     if (layout.label) cloud.labels.reserve(std::min(h.points, fit));
+    if (layout.normals) cloud.normals.reserve(std::min(h.points, fit));
     PointBuilder builder(cloud, layout.wide);
     LineReader lines(body, h.body_first_line);
     std::vector<std::string_view> tok;
@@ -295,6 +310,18 @@ void read_ascii(std::string_view bytes, const Header& h, const FieldLayout& layo
             if (!parse_double(t, xyz[a])) {
                 throw_malformed_line(src, n, cat({quoted(t), " is not a number"}));
             }
+        }
+        if (layout.normals) {
+            Vec3f normal = Vec3f::Zero();
+            for (std::size_t a = 0; a < 3; ++a) {
+                const std::string_view t = tok[first_value[(*layout.normals)[a]]];
+                // Straight to float: the writer's shortest text comes back exactly.
+                if (!parse_float(t, normal[static_cast<int>(a)])) {
+                    throw_malformed_line(
+                        src, n, cat({kNormalNames[a], " ", quoted(t), " is not a number"}));
+                }
+            }
+            cloud.normals.push_back(normal);
         }
         if (layout.label) {
             const std::string_view t = tok[first_value[*layout.label]];
@@ -339,7 +366,10 @@ void read_binary(std::string_view bytes, const Header& h, const FieldLayout& lay
                                     column(layout.xyz[2])};
     Column label;
     if (layout.label) label = column(*layout.label);
-    read_columns(bytes.data(), h.points, xyz, layout.label ? &label : nullptr, swap, src, cloud);
+    std::array<Column, 3> normals;
+    for (std::size_t a = 0; a < 3 && layout.normals; ++a) normals[a] = column((*layout.normals)[a]);
+    read_columns(bytes.data(), h.points, xyz, layout.label ? &label : nullptr,
+                 layout.normals ? &normals : nullptr, swap, src, cloud);
     check_padding_tail(bytes, h.body_offset + h.points * record, src);
 }
 
@@ -401,7 +431,10 @@ void read_compressed(std::string_view bytes, const Header& h, const FieldLayout&
                                     column(layout.xyz[2])};
     Column label;
     if (layout.label) label = column(*layout.label);
-    read_columns(buf.get(), h.points, xyz, layout.label ? &label : nullptr, swap, src, cloud);
+    std::array<Column, 3> normals;
+    for (std::size_t a = 0; a < 3 && layout.normals; ++a) normals[a] = column((*layout.normals)[a]);
+    read_columns(buf.get(), h.points, xyz, layout.label ? &label : nullptr,
+                 layout.normals ? &normals : nullptr, swap, src, cloud);
     check_padding_tail(bytes, h.body_offset + 8 + compressed, src);
 }
 

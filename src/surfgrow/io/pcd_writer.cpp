@@ -1,4 +1,5 @@
-// Writing PCD v0.7: x y z [label], ascii, binary or binary_compressed (LZF).
+// Writing PCD v0.7: x y z [normal_x normal_y normal_z] [label], ascii, binary or
+// binary_compressed (LZF).
 #include <liblzf/lzf.h>
 
 #include <algorithm>
@@ -20,10 +21,15 @@ void write_header(OutputBuffer& buf, const PointCloud& cloud, const CloudLayout&
                   PcdEncoding encoding) {
     const std::string n = std::to_string(cloud.size());
     const std::string_view c = layout.doubles ? "8" : "4";
+    // Normals after x y z, the label last (as write_ascii, write_binary, write_compressed).
+    const bool nrm = layout.normals;
+    const bool lab = layout.labels;
     buf.append("# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n");
-    buf.append(layout.labels ? "FIELDS x y z label\n" : "FIELDS x y z\n");
-    buf.append(cat({"SIZE ", c, " ", c, " ", c, layout.labels ? " 4\n" : "\n"}));
-    buf.append(layout.labels ? "TYPE F F F I\nCOUNT 1 1 1 1\n" : "TYPE F F F\nCOUNT 1 1 1\n");
+    buf.append(
+        cat({"FIELDS x y z", nrm ? " normal_x normal_y normal_z" : "", lab ? " label" : "", "\n"}));
+    buf.append(cat({"SIZE ", c, " ", c, " ", c, nrm ? " 4 4 4" : "", lab ? " 4" : "", "\n"}));
+    buf.append(cat({"TYPE F F F", nrm ? " F F F" : "", lab ? " I" : "", "\n"}));
+    buf.append(cat({"COUNT 1 1 1", nrm ? " 1 1 1" : "", lab ? " 1" : "", "\n"}));
     buf.append(cat({"WIDTH ", n, "\nHEIGHT 1\nVIEWPOINT "}));
     if (cloud.viewpoint) {
         const Vec3d v = *cloud.viewpoint + cloud.offset;
@@ -48,6 +54,12 @@ void write_ascii(OutputBuffer& buf, const PointCloud& cloud, const CloudLayout& 
                 buf.put_number(cloud.points[i][a]);
             }
         }
+        if (layout.normals) {
+            for (int a = 0; a < 3; ++a) {
+                buf.put(' ');
+                buf.put_number(cloud.normals[i][a]);
+            }
+        }
         if (layout.labels) {
             buf.put(' ');
             buf.put_number(cloud.labels[i]);
@@ -67,6 +79,9 @@ void write_binary(OutputBuffer& buf, const PointCloud& cloud, const CloudLayout&
         } else {
             for (int a = 0; a < 3; ++a) buf.put_binary(cloud.points[i][a], kSwap);
         }
+        if (layout.normals) {
+            for (int a = 0; a < 3; ++a) buf.put_binary(cloud.normals[i][a], kSwap);
+        }
         if (layout.labels) buf.put_binary(cloud.labels[i], kSwap);
     }
 }
@@ -82,7 +97,7 @@ void write_compressed(OutputBuffer& buf, const PointCloud& cloud, const CloudLay
     // Each field's values one after another (x x x ... y y y ...) compress far better.
     const std::size_t n = cloud.size();
     const std::size_t value = layout.doubles ? 8 : 4;
-    const std::size_t size = n * (3 * value + (layout.labels ? 4 : 0));
+    const std::size_t size = n * (3 * value + (layout.normals ? 12 : 0) + (layout.labels ? 4 : 0));
     if (size > std::numeric_limits<uint32_t>::max()) {
         throw Error(ErrorCode::kCannotWrite,
                     cat({"binary_compressed PCD holds at most 4 GiB of data; this cloud needs ",
@@ -97,6 +112,11 @@ void write_compressed(OutputBuffer& buf, const PointCloud& cloud, const CloudLay
             } else {
                 p = put_raw(p, cloud.points[i][a]);
             }
+        }
+    }
+    if (layout.normals) {
+        for (int a = 0; a < 3; ++a) {
+            for (std::size_t i = 0; i < n; ++i) p = put_raw(p, cloud.normals[i][a]);
         }
     }
     if (layout.labels) {
@@ -118,9 +138,9 @@ void write_compressed(OutputBuffer& buf, const PointCloud& cloud, const CloudLay
 
 }  // namespace
 
-void write_pcd(std::ostream& out, const PointCloud& cloud, PcdEncoding encoding,
-               bool write_labels) {
-    const CloudLayout layout = layout_for(cloud, write_labels);
+void write_pcd(std::ostream& out, const PointCloud& cloud, PcdEncoding encoding, bool write_labels,
+               bool write_normals) {
+    const CloudLayout layout = layout_for(cloud, write_labels, write_normals);
     OutputBuffer buf(out);
     write_header(buf, cloud, layout, encoding);
     switch (encoding) {

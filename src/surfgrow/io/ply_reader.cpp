@@ -1,5 +1,5 @@
-// Reading PLY: header, then each element in order; only the vertex element's x, y, z, label (and
-// a fused cloud's scan index with the scan origins from the header) kept.
+// Reading PLY: header, then each element in order; only the vertex element's x, y, z, normals,
+// label (and a fused cloud's scan index with the scan origins from the header) kept.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -161,12 +161,20 @@ Header parse_header(std::string_view bytes, std::string_view src) {
 }
 
 constexpr std::array<std::string_view, 3> kAxisNames{"x", "y", "z"};
+constexpr std::array<std::string_view, 3> kNormalNames{"nx", "ny", "nz"};
 
 // Which property of the vertex element feeds what.
 struct VertexLayout {
     std::array<int, 3> xyz{-1, -1, -1};
+    std::array<int, 3> normal{-1, -1, -1};  // all three or none
     int label = -1;
     int scan = -1;  // only read when the header gives scan origins
+    [[nodiscard]] bool has_normals() const { return normal[0] >= 0; }
+    // Whether property k feeds anything.
+    [[nodiscard]] bool uses(int k) const {
+        return k == xyz[0] || k == xyz[1] || k == xyz[2] || k == normal[0] || k == normal[1] ||
+               k == normal[2] || k == label || k == scan;
+    }
 };
 
 VertexLayout vertex_layout(const Element& vertex, std::string_view src, const ReadOptions& options,
@@ -186,12 +194,20 @@ VertexLayout vertex_layout(const Element& vertex, std::string_view src, const Re
             v.label = static_cast<int>(i);
         }
         if (want_scan && !p.is_list && p.name == "scan" && v.scan < 0) v.scan = static_cast<int>(i);
+        for (int a = 0; a < 3; ++a) {
+            // The first property of each name decides; a list one means no normals (below).
+            if (options.read_normals && p.name == kNormalNames[a] && v.normal[a] == -1) {
+                v.normal[a] = p.is_list ? -2 : static_cast<int>(i);
+            }
+        }
     }
     for (int a = 0; a < 3; ++a) {
         if (v.xyz[a] < 0) {
             throw_malformed(src, cat({"the vertex element has no ", kAxisNames[a], " property"}));
         }
     }
+    // Normals only when all three are plain scalars.
+    if (v.normal[0] < 0 || v.normal[1] < 0 || v.normal[2] < 0) v.normal = {-1, -1, -1};
     return v;
 }
 
@@ -259,8 +275,13 @@ class BinaryBody {
                 const auto i = static_cast<std::size_t>(v.label);
                 label = {base + prop_offset[i], offset, e.props[i].type};
             }
-            read_columns(bytes_.data(), e.count, xyz, v.label >= 0 ? &label : nullptr, swap_, src_,
-                         cloud);
+            std::array<Column, 3> normals;
+            for (int a = 0; a < 3 && v.has_normals(); ++a) {
+                const auto i = static_cast<std::size_t>(v.normal[a]);
+                normals[a] = {base + prop_offset[i], offset, e.props[i].type};
+            }
+            read_columns(bytes_.data(), e.count, xyz, v.label >= 0 ? &label : nullptr,
+                         v.has_normals() ? &normals : nullptr, swap_, src_, cloud);
             if (v.scan >= 0) {
                 const auto k = static_cast<std::size_t>(v.scan);
                 cloud.scan_index.reserve(e.count);
@@ -275,9 +296,11 @@ class BinaryBody {
         check_fits(e, e.min_record_size(), "vertices");
         cloud.points.reserve(e.count);
         if (v.label >= 0) cloud.labels.reserve(e.count);
+        if (v.has_normals()) cloud.normals.reserve(e.count);
         PointBuilder builder(cloud, wide_coordinates(e, v));
         for (uint64_t i = 0; i < e.count; ++i) {
             double xyz[3] = {0, 0, 0};
+            Vec3f normal = Vec3f::Zero();
             for (std::size_t k = 0; k < e.props.size(); ++k) {
                 const Property& p = e.props[k];
                 if (p.is_list) {
@@ -288,6 +311,9 @@ class BinaryBody {
                 const auto ik = static_cast<int>(k);
                 for (int a = 0; a < 3; ++a) {
                     if (ik == v.xyz[a]) xyz[a] = load_as_double(at, p.type, swap_);
+                    if (ik == v.normal[a]) {
+                        normal[a] = static_cast<float>(load_as_double(at, p.type, swap_));
+                    }
                 }
                 if (ik == v.label) {
                     int32_t label = 0;
@@ -300,6 +326,7 @@ class BinaryBody {
                 }
                 if (ik == v.scan) push_scan(cloud, load_as_double(at, p.type, swap_), i, src_);
             }
+            if (v.has_normals()) cloud.normals.push_back(normal);
             builder.add(xyz[0], xyz[1], xyz[2]);
         }
     }
@@ -381,9 +408,11 @@ class AsciiBody {
         const uint64_t fit = size_ / e.props.size() / 2 + 1;
         cloud.points.reserve(std::min(e.count, fit));
         if (v.label >= 0) cloud.labels.reserve(std::min(e.count, fit));
+        if (v.has_normals()) cloud.normals.reserve(std::min(e.count, fit));
         PointBuilder builder(cloud, wide_coordinates(e, v));
         for (uint64_t i = 0; i < e.count; ++i) {
             double xyz[3] = {0, 0, 0};
+            Vec3f normal = Vec3f::Zero();
             for (std::size_t k = 0; k < e.props.size(); ++k) {
                 const Property& p = e.props[k];
                 if (p.is_list) {
@@ -391,14 +420,16 @@ class AsciiBody {
                     continue;
                 }
                 const auto ik = static_cast<int>(k);
-                if (ik != v.xyz[0] && ik != v.xyz[1] && ik != v.xyz[2] && ik != v.label &&
-                    ik != v.scan) {
+                if (!v.uses(ik)) {
                     next(e, i);
                     continue;
                 }
-                const double value = number(e, i, p);
+                const std::string_view tok = next(e, i);
+                const double value = number(tok, e, i, p);
                 for (int a = 0; a < 3; ++a) {
                     if (ik == v.xyz[a]) xyz[a] = value;
+                    // Straight to float: the writer's shortest text comes back exactly.
+                    if (ik == v.normal[a] && !parse_float(tok, normal[a])) bad_number(tok, e, i, p);
                 }
                 if (ik == v.label) {
                     int32_t label = 0;
@@ -411,6 +442,7 @@ class AsciiBody {
                 }
                 if (ik == v.scan) push_scan(cloud, value, i, src_);
             }
+            if (v.has_normals()) cloud.normals.push_back(normal);
             builder.add(xyz[0], xyz[1], xyz[2]);
         }
     }
@@ -432,15 +464,17 @@ class AsciiBody {
         return tok;
     }
 
-    double number(const Element& e, uint64_t i, const Property& p) {
-        const std::string_view tok = next(e, i);
+    double number(std::string_view tok, const Element& e, uint64_t i, const Property& p) const {
         double value = 0;
-        if (!parse_double(tok, value)) {
-            throw_malformed_line(src_, tokens_.line_number(),
-                                 cat({quoted(tok), " is not a number (", e.name, " ", count_str(i),
-                                      ", property ", p.name, ")"}));
-        }
+        if (!parse_double(tok, value)) bad_number(tok, e, i, p);
         return value;
+    }
+
+    [[noreturn]] void bad_number(std::string_view tok, const Element& e, uint64_t i,
+                                 const Property& p) const {
+        throw_malformed_line(src_, tokens_.line_number(),
+                             cat({quoted(tok), " is not a number (", e.name, " ", count_str(i),
+                                  ", property ", p.name, ")"}));
     }
 
     void skip_property(const Element& e, uint64_t i, const Property& p) {

@@ -1,4 +1,5 @@
-// Writing PLY: one vertex element, float or double x y z, optional int label and uint scan.
+// Writing PLY: one vertex element, float or double x y z, optional float nx ny nz, int label and
+// uint scan.
 #include "surfgrow/io/cloud_layout.hpp"
 #include "surfgrow/io/output_buffer.hpp"
 #include "surfgrow/io/ply.hpp"
@@ -22,8 +23,8 @@ bool scans_to_write(const PointCloud& cloud, bool write_scans) {
 }  // namespace
 
 void write_ply(std::ostream& out, const PointCloud& cloud, PlyEncoding encoding, bool write_labels,
-               bool write_scans) {
-    const CloudLayout layout = layout_for(cloud, write_labels);
+               bool write_scans, bool write_normals) {
+    const CloudLayout layout = layout_for(cloud, write_labels, write_normals);
     const bool scans = scans_to_write(cloud, write_scans);
     const std::string_view type = layout.doubles ? "double" : "float";
     OutputBuffer buf(out);
@@ -35,6 +36,7 @@ void write_ply(std::ostream& out, const PointCloud& cloud, PlyEncoding encoding,
     }
     buf.append(cat({"element vertex ", std::to_string(cloud.size()), "\nproperty ", type,
                     " x\nproperty ", type, " y\nproperty ", type, " z\n"}));
+    if (layout.normals) buf.append("property float nx\nproperty float ny\nproperty float nz\n");
     if (layout.labels) buf.append("property int label\n");
     if (scans) buf.append("property uint scan\n");
     buf.append("end_header\n");
@@ -57,6 +59,12 @@ void write_ply(std::ostream& out, const PointCloud& cloud, PlyEncoding encoding,
                 buf.put(' ');
                 buf.put_number(p.z());
             }
+            if (layout.normals) {
+                for (int a = 0; a < 3; ++a) {
+                    buf.put(' ');
+                    buf.put_number(cloud.normals[i][a]);
+                }
+            }
             if (layout.labels) {
                 buf.put(' ');
                 buf.put_number(cloud.labels[i]);
@@ -76,6 +84,9 @@ void write_ply(std::ostream& out, const PointCloud& cloud, PlyEncoding encoding,
                 for (int a = 0; a < 3; ++a) buf.put_binary(p[a], swap);
             } else {
                 for (int a = 0; a < 3; ++a) buf.put_binary(cloud.points[i][a], swap);
+            }
+            if (layout.normals) {
+                for (int a = 0; a < 3; ++a) buf.put_binary(cloud.normals[i][a], swap);
             }
             if (layout.labels) buf.put_binary(cloud.labels[i], swap);
             if (scans) buf.put_binary(cloud.scan_index[i], swap);

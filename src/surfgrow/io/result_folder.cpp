@@ -29,7 +29,7 @@ ResultFolder read_result_folder(const fs::path& dir) {
 
 GrownCloud read_grown_cloud(const fs::path& cloud_file, const ResultFolder& folder) {
     GrownCloud g;
-    g.cloud = read_cloud(cloud_file);
+    g.cloud = read_cloud(cloud_file, kPointsOnly);
     // Bring the points into the result's frame if the file was read with another offset.
     const Vec3d shift = g.cloud.offset - folder.result.meta.offset;
     if (shift != Vec3d::Zero()) {

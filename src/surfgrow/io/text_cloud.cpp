@@ -61,8 +61,11 @@ std::string_view column_name(std::string_view cell) {
 struct Columns {
     std::array<std::size_t, 3> xyz{0, 1, 2};
     std::optional<std::size_t> label;
+    std::optional<std::array<std::size_t, 3>> normals;  // all three or none
     [[nodiscard]] std::size_t needed() const {
-        return std::max({xyz[0], xyz[1], xyz[2], label.value_or(0)}) + 1;
+        std::size_t last = std::max({xyz[0], xyz[1], xyz[2], label.value_or(0)});
+        if (normals) last = std::max({last, (*normals)[0], (*normals)[1], (*normals)[2]});
+        return last + 1;
     }
 };
 
@@ -70,8 +73,10 @@ struct Columns {
 std::optional<Columns> header_columns(const std::vector<std::string_view>& cells,
                                       const ReadOptions& options) {
     static constexpr std::array<std::string_view, 3> kAxes{"x", "y", "z"};
+    static constexpr std::array<std::string_view, 3> kNormals{"nx", "ny", "nz"};
     Columns c;
     std::array<bool, 3> found{false, false, false};
+    std::array<std::optional<std::size_t>, 3> normal;
     for (std::size_t i = 0; i < cells.size(); ++i) {
         const std::string_view name = column_name(cells[i]);
         for (std::size_t a = 0; a < 3; ++a) {
@@ -79,10 +84,14 @@ std::optional<Columns> header_columns(const std::vector<std::string_view>& cells
                 found[a] = true;
                 c.xyz[a] = i;
             }
+            if (options.read_normals && !normal[a] && same_name(name, kNormals[a])) normal[a] = i;
         }
         if (options.read_labels && !c.label && same_name(name, options.label_field)) c.label = i;
     }
     if (!found[0] || !found[1] || !found[2]) return std::nullopt;
+    if (normal[0] && normal[1] && normal[2]) {
+        c.normals = std::array<std::size_t, 3>{*normal[0], *normal[1], *normal[2]};
+    }
     return c;
 }
 
@@ -152,6 +161,7 @@ PointCloud read_text_cloud(std::string_view bytes, std::string_view source,
             }
             before_points = false;
             if (columns->label) cloud.labels.reserve(cloud.points.capacity());
+            if (columns->normals) cloud.normals.reserve(cloud.points.capacity());
         }
         if (cells.size() < columns->needed()) {
             throw_malformed_line(source, n,
@@ -166,6 +176,19 @@ PointCloud read_text_cloud(std::string_view bytes, std::string_view source,
                                      cat({quoted(cell), " in column ",
                                           count_str(columns->xyz[a] + 1), " is not a number"}));
             }
+        }
+        if (columns->normals) {
+            Vec3f normal = Vec3f::Zero();
+            for (std::size_t a = 0; a < 3; ++a) {
+                const std::size_t column = (*columns->normals)[a];
+                // Straight to float: the writer's shortest text comes back exactly.
+                if (!parse_float(cells[column], normal[static_cast<int>(a)])) {
+                    throw_malformed_line(source, n,
+                                         cat({"normal ", quoted(cells[column]), " in column ",
+                                              count_str(column + 1), " is not a number"}));
+                }
+            }
+            cloud.normals.push_back(normal);
         }
         if (columns->label) {
             const std::string_view cell = cells[*columns->label];
@@ -184,14 +207,17 @@ PointCloud read_text_cloud(std::string_view bytes, std::string_view source,
 }
 
 void write_text_cloud(std::ostream& out, const PointCloud& cloud, char delimiter, bool write_labels,
-                      bool count_line) {
-    const CloudLayout layout = layout_for(cloud, write_labels);
+                      bool count_line, bool write_normals) {
+    const CloudLayout layout = layout_for(cloud, write_labels, write_normals);
     OutputBuffer buf(out);
     if (count_line) buf.append(cat({std::to_string(cloud.size()), "\n"}));
-    if (layout.labels) {
+    if (layout.normals || layout.labels) {
         const char d[1] = {delimiter};
         const std::string_view sep(d, 1);
-        buf.append(cat({"x", sep, "y", sep, "z", sep, "label\n"}));
+        buf.append(cat({"x", sep, "y", sep, "z"}));
+        if (layout.normals) buf.append(cat({sep, "nx", sep, "ny", sep, "nz"}));
+        if (layout.labels) buf.append(cat({sep, "label"}));
+        buf.put('\n');
     }
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         for (int a = 0; a < 3; ++a) {
@@ -200,6 +226,12 @@ void write_text_cloud(std::ostream& out, const PointCloud& cloud, char delimiter
                 buf.put_number(absolute_point(cloud, i)[a]);
             } else {
                 buf.put_number(cloud.points[i][a]);
+            }
+        }
+        if (layout.normals) {
+            for (int a = 0; a < 3; ++a) {
+                buf.put(delimiter);
+                buf.put_number(cloud.normals[i][a]);
             }
         }
         if (layout.labels) {
