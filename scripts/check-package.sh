@@ -6,13 +6,15 @@
 #  4. the installed CLI under qemu-user emulating a Westmere CPU (SSE4.2, no AVX): the default
 #     build runs on any x86-64, with the SIMD paths chosen at run time;
 #  5. the libraries and CLI built with Debian's clang: every SIMD path it has gives the bytes of
-#     the GCC build's.
+#     the GCC build's;
+#  6. the Python package: the module `cmake --install` put in the prefix imports, and
+#     `pip install --no-build-isolation .` into a fresh venv builds one that passes tests/python.
 # Usage: scripts/check-package.sh [build dir, default build]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 src=$PWD
 build=${1:-build}
-scripts/install-deps.sh build package
+scripts/install-deps.sh build package python
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
@@ -66,4 +68,17 @@ for isa in baseline avx2 avx512; do
         cmp "$tmp/gcc/$f" "$tmp/clang-$isa/$f"
     done
 done
+if [[ -d "$build/python/surfgrow" ]]; then
+    echo "check-package: the installed Python module" >&2
+    site=$(find "$tmp/prefix/lib" -maxdepth 3 -type d -name dist-packages -o -maxdepth 3 -type d \
+           -name site-packages | head -n 1)
+    (cd "$tmp" && PYTHONPATH="$site" /usr/bin/python3 -c \
+        'import surfgrow, numpy; r = surfgrow.grow(numpy.random.rand(1000, 3)); print(surfgrow.__file__)' |
+        grep -q "^$tmp/prefix/")
+fi
+echo "check-package: pip install --no-build-isolation . in a venv, and tests/python there" >&2
+/usr/bin/python3 -m venv --system-site-packages "$tmp/venv"
+"$tmp/venv/bin/pip" install -q --no-build-isolation --no-index "$src"
+(cd "$tmp" && SURFGROW_CLI="$tmp/prefix/bin/surfgrow" PYTHONDONTWRITEBYTECODE=1 \
+    "$tmp/venv/bin/python" -m pytest -q -p no:cacheprovider "$src/tests/python")
 echo "check-package: ok" >&2

@@ -92,10 +92,7 @@ std::string stats_table(const GrowStats& s, const CloudUnits& units) {
 }
 
 std::string sparsity_hint(const GrowStats& s, const GrowerConfig& config, const CloudUnits& units) {
-    // Only when registration is poor and sparse home points are the main reason.
-    if (s.valid_points == 0 || s.registered_fraction() >= 0.9) return "";
-    if (s.rejected_sparse < s.rejected_nonplanar || s.rejected_sparse < s.homes_tried / 4)
-        return "";
+    if (!s.sparse_for_mu()) return "";
     const bool adaptive = config.max_radius() > config.mu;
     const std::string advice =
         adaptive

@@ -72,6 +72,12 @@ struct GrowStats {
     [[nodiscard]] double registered_grown_fraction() const {
         return valid_points ? double(registered_grown) / double(valid_points) : 0.0;
     }
+    /// Registration is poor (under 90 %) and mostly because home points had too few neighbours
+    /// within mu: mu is too small for the point spacing (or not in the cloud's units).
+    [[nodiscard]] bool sparse_for_mu() const {
+        if (valid_points == 0 || registered_fraction() >= 0.9) return false;
+        return rejected_sparse >= rejected_nonplanar && rejected_sparse >= homes_tried / 4;
+    }
     /// Points per surface: the paper's data reduction (100 000 points -> 2 000 surfaces = 50x).
     [[nodiscard]] double data_reduction() const {
         return surfaces ? double(valid_points) / double(surfaces) : 0.0;

@@ -46,6 +46,17 @@ void put_raw(std::ostream& out, T value) {
 static_assert(std::endian::native == std::endian::little,
               "binary writers assume a little-endian host");
 
+[[noreturn]] void malformed(const std::filesystem::path& file, std::string_view what) {
+    throw Error(ErrorCode::kMalformedInput, cat({file.string(), ": ", what}));
+}
+
+Vec3d vec_of(const nlohmann::json& j) {
+    if (!j.is_array() || j.size() != 3) throw std::invalid_argument("expected [x, y, z]");
+    return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+}  // namespace
+
 nlohmann::json parameters_json(const GrowerConfig& c) {
     nlohmann::json p = {
         {"mu", c.mu},
@@ -113,17 +124,6 @@ nlohmann::json summary_json(const GrowStats& s) {
         {"range_bands", bands},
     };
 }
-
-[[noreturn]] void malformed(const std::filesystem::path& file, std::string_view what) {
-    throw Error(ErrorCode::kMalformedInput, cat({file.string(), ": ", what}));
-}
-
-Vec3d vec_of(const nlohmann::json& j) {
-    if (!j.is_array() || j.size() != 3) throw std::invalid_argument("expected [x, y, z]");
-    return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
-}
-
-}  // namespace
 
 const char* orientation_name(OrientationSource source) {
     switch (source) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <ostream>
 #include <span>
 #include <string>
@@ -54,6 +55,11 @@ struct StoredResult {
 
 /// Reads labels.txt. Throws Error(kCannotOpen / kMalformedInput).
 [[nodiscard]] std::vector<std::int32_t> read_labels_txt(const std::filesystem::path& file);
+
+/// surfaces.json's "parameters": every parameter of `config`, defaults resolved.
+[[nodiscard]] nlohmann::json parameters_json(const GrowerConfig& config);
+/// surfaces.json's "summary": the statistics of a run (no timings).
+[[nodiscard]] nlohmann::json summary_json(const GrowStats& stats);
 
 /// Name of an OrientationSource as written in surfaces.json.
 [[nodiscard]] const char* orientation_name(OrientationSource source);
