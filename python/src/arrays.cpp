@@ -12,10 +12,6 @@ namespace surfgrow::python {
 
 namespace {
 
-[[noreturn]] void invalid(const std::string& message) {
-    throw Error(ErrorCode::kInvalidParameter, message);
-}
-
 std::string shape_of(const py::array& a) {
     std::string s = "(";
     for (py::ssize_t k = 0; k < a.ndim(); ++k) {

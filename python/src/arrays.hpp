@@ -7,14 +7,21 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "surfgrow/core/error.hpp"
 #include "surfgrow/core/geometry.hpp"
 #include "surfgrow/core/point_cloud.hpp"
 
 namespace surfgrow::python {
 
 namespace py = pybind11;
+
+/// Throws Error(kInvalidParameter): InvalidParameterError in Python.
+[[noreturn]] inline void invalid(const std::string& message) {
+    throw Error(ErrorCode::kInvalidParameter, message);
+}
 
 /// An (N, 3) array of points as a PointCloud. float32 rows are taken as they are (one memcpy
 /// when C-contiguous, one strided copy otherwise); float64 and integer rows are converted once,
@@ -69,6 +76,21 @@ template <class T, class F>
 [[nodiscard]] inline py::array_t<double> vec3_array(const Vec3d& p) {
     py::array_t<double> a(3);
     for (py::ssize_t k = 0; k < 3; ++k) a.mutable_data()[k] = p[k];
+    return a;
+}
+
+/// An (n, 4) float64 array of planes (a, b, c, d), n . x + d = 0, from each one's unit normal
+/// and a point on it (both given by f(i) as a pair).
+template <class F>
+[[nodiscard]] py::array_t<double> plane_rows(std::size_t n, F&& f) {
+    py::array_t<double> a({static_cast<py::ssize_t>(n), py::ssize_t{4}});
+    auto w = a.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto [normal, point] = f(i);
+        const auto r = static_cast<py::ssize_t>(i);
+        for (py::ssize_t k = 0; k < 3; ++k) w(r, k) = normal[k];
+        w(r, 3) = -normal.dot(point);
+    }
     return a;
 }
 

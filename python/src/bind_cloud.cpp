@@ -15,10 +15,6 @@ namespace surfgrow::python {
 
 namespace {
 
-[[noreturn]] void invalid(const std::string& message) {
-    throw Error(ErrorCode::kInvalidParameter, message);
-}
-
 std::optional<io::CloudFormat> format_named(const std::optional<std::string>& name) {
     if (!name) return std::nullopt;
     if (*name == "ply") return io::CloudFormat::kPly;

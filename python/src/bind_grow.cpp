@@ -17,10 +17,6 @@ namespace surfgrow::python {
 
 namespace {
 
-[[noreturn]] void invalid(const std::string& message) {
-    throw Error(ErrorCode::kInvalidParameter, message);
-}
-
 PlaneTest plane_test_named(const std::string& name) {
     if (name == "disk") return PlaneTest::kDisk;
     if (name == "paper") return PlaneTest::kPaper;
@@ -98,15 +94,9 @@ void bind_grow(py::module_& m) {
             "planes",
             [](const Grown& g) {
                 const auto& s = g.result.surfaces;
-                py::array_t<double> a({static_cast<py::ssize_t>(s.size()), py::ssize_t{4}});
-                auto w = a.mutable_unchecked<2>();
-                for (std::size_t i = 0; i < s.size(); ++i) {
-                    const auto r = static_cast<py::ssize_t>(i);
-                    const Vec3d n = s[i].normal;
-                    for (py::ssize_t k = 0; k < 3; ++k) w(r, k) = n[k];
-                    w(r, 3) = -n.dot(s[i].centroid + g.cloud->offset);
-                }
-                return a;
+                return plane_rows(s.size(), [&](std::size_t i) {
+                    return std::pair{s[i].normal, Vec3d(s[i].centroid + g.cloud->offset)};
+                });
             },
             "(S, 4) float64 planes (a, b, c, d): n . x + d = 0, n the unit normal")
         .def_property_readonly(

@@ -23,10 +23,6 @@ namespace surfgrow::python {
 
 namespace {
 
-[[noreturn]] void invalid(const std::string& message) {
-    throw Error(ErrorCode::kInvalidParameter, message);
-}
-
 struct Planes {
     std::shared_ptr<const Grown> grown;
     std::shared_ptr<const PointCloud> cloud;
@@ -139,14 +135,9 @@ void bind_robot(py::module_& m) {
             "planes",
             [](const Planes& p) {
                 const auto& b = p.planes.planes;
-                py::array_t<double> a({static_cast<py::ssize_t>(b.size()), py::ssize_t{4}});
-                auto w = a.mutable_unchecked<2>();
-                for (std::size_t i = 0; i < b.size(); ++i) {
-                    const auto r = static_cast<py::ssize_t>(i);
-                    for (py::ssize_t k = 0; k < 3; ++k) w(r, k) = b[i].normal[k];
-                    w(r, 3) = -b[i].normal.dot(b[i].centroid + p.cloud->offset);
-                }
-                return a;
+                return plane_rows(b.size(), [&](std::size_t i) {
+                    return std::pair{b[i].normal, Vec3d(b[i].centroid + p.cloud->offset)};
+                });
             },
             "(P, 4) float64 planes (a, b, c, d): n . x + d = 0")
         .def_property_readonly(

@@ -24,10 +24,6 @@ namespace surfgrow::python {
 
 namespace {
 
-[[noreturn]] void invalid(const std::string& message) {
-    throw Error(ErrorCode::kInvalidParameter, message);
-}
-
 /// Ground truth of a simulated scan: the scene's faces and each point's true face.
 struct Truth {
     std::shared_ptr<const scanner::Scene> scene;
