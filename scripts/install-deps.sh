@@ -10,7 +10,7 @@ set -euo pipefail
 
 declare -A group=(
     [build]="cmake make g++ pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev liblzf-dev libpng-dev libfreetype-dev libfontconfig-dev fonts-dejavu-core liboctomap-dev python3 python3-matplotlib python3-numpy"
-    [test]="libgtest-dev libgmock-dev libbenchmark-dev clang-format"
+    [test]="libgtest-dev libgmock-dev libbenchmark-dev clang-format strace"
     [package]="qemu-user clang libomp-dev"
     [python]="pybind11-dev python3-dev python3-numpy python3-setuptools python3-wheel python3-pip python3-venv python3-pytest python3-tqdm python3-open3d"
     [peers]="libpcl-dev libcgal-dev libtbb-dev python3-open3d libgmp-dev libmpfr-dev"

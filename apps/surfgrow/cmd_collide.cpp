@@ -70,9 +70,18 @@ void add_collide_command(CLI::App& app) {
             args->report.empty() ? dir / "collision.json" : std::filesystem::path(args->report);
         const io::CollisionRequest request{std::filesystem::path(args->robot).filename().string(),
                                            tolerance};
-        io::write_atomically(report, [&](std::ostream& o) {
+        const auto write_report = [&](std::ostream& o) {
             io::write_collision_report_json(o, env, robot, results, request, stored.meta);
-        });
+        };
+        if (args->report.empty()) {
+            // Into the result folder through its transaction: its lock, and no mix with a run
+            // replacing it.
+            io::OutputTransaction tx(dir);
+            tx.add(report.filename().string(), write_report);
+            tx.commit();
+        } else {
+            io::write_atomically(report, write_report);
+        }
 
         std::size_t colliding = 0, width = 4;
         for (const RobotLink& l : robot.links) width = std::max(width, l.name.size());

@@ -45,14 +45,10 @@ void add_coverage_command(CLI::App& app) {
         BoundPlanes planes;
         std::error_code ec;
         if (fs::exists(dir / "planes.json", ec)) {
-            planes = io::read_planes_json(dir / "planes.json").planes;
-            if (planes.stats.patches != result.surfaces.size())
-                throw Error(
-                    ErrorCode::kMalformedInput,
-                    cat({(dir / "planes.json").string(), " was computed from ",
-                         std::to_string(planes.stats.patches), " surfaces but ",
-                         (dir / "surfaces.json").string(), " has ",
-                         std::to_string(result.surfaces.size()), ": run `surfgrow planes` again"}));
+            io::StoredPlanes stored = io::read_planes_json(dir / "planes.json");
+            io::check_derived_file(dir / "planes.json", stored.meta, stored.planes.stats.patches,
+                                   result, "run `surfgrow planes` again");
+            planes = std::move(stored.planes);
         } else if (!args->cloud.empty()) {
             const io::GrownFolder f = io::read_grown_folder(dir, args->cloud);
             planes = compute_bound_planes(

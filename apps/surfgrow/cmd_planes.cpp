@@ -37,6 +37,14 @@ void add_planes_command(CLI::App& app) {
         io::OutputTransaction tx(args->dir);
         io::stage_planes(tx, planes, meta, args->planes.obj);
         tx.commit();
+        if (!tx.removed().empty()) {
+            std::string names;
+            for (const std::string& n : tx.removed()) names += (names.empty() ? "" : ", ") + n;
+            std::cerr << "surfgrow: note: removed " << names
+                      << " (made from the previous planes); run `surfgrow coverage` or `eval` "
+                         "again for new ones"
+                      << std::endl;
+        }
         if (!args->quiet) std::cout << planes_summary(planes, meta.units) << std::endl;
     });
 }

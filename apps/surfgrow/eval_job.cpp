@@ -108,13 +108,8 @@ eval::EvalReport evaluate_folder(const fs::path& result_dir, const Truth& truth,
     const fs::path planes_file = result_dir / "planes.json";
     if (fs::exists(planes_file)) {
         const io::StoredPlanes planes = io::read_planes_json(planes_file);
-        if (planes.planes.plane_of_patch.size() != result.surfaces.size())
-            throw Error(
-                ErrorCode::kInvalidParameter,
-                cat({planes_file.string(), ": planes of ",
-                     std::to_string(planes.planes.plane_of_patch.size()),
-                     " surfaces, but surfaces.json has ", std::to_string(result.surfaces.size()),
-                     ": not the planes of this result"}));
+        io::check_derived_file(planes_file, planes.meta, planes.planes.plane_of_patch.size(),
+                               result, "run `surfgrow planes` again");
         eval::add_plane_figures(report, truth.cloud, grown, planes.planes, truth.faces);
     }
     return report;
@@ -123,7 +118,10 @@ eval::EvalReport evaluate_folder(const fs::path& result_dir, const Truth& truth,
 void write_eval_json(const fs::path& file, const eval::EvalReport& report,
                      const std::vector<eval::RequirementCheck>& checks) {
     const std::string text = eval::to_json(report, checks).dump(2) + "\n";
-    io::write_atomically(file, [&](std::ostream& o) { o << text; });
+    // Into the result folder through its transaction: its lock, and no mix with a run replacing it.
+    io::OutputTransaction tx(file.parent_path());
+    tx.add(file.filename().string(), [&](std::ostream& o) { o << text; });
+    tx.commit();
 }
 
 void enforce(const std::vector<eval::RequirementCheck>& checks) {

@@ -49,7 +49,7 @@ struct Truth {
                                                const Truth& truth,
                                                const eval::EvalOptions& options);
 
-/// Writes eval.json atomically.
+/// Writes `file` (RESULT/eval.json) into its result folder by an output transaction.
 void write_eval_json(const std::filesystem::path& file, const eval::EvalReport& report,
                      const std::vector<eval::RequirementCheck>& checks);
 

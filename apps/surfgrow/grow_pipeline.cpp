@@ -139,7 +139,8 @@ GrowRun grow_and_write(const PointCloud& cloud, const PipelineConfig& config,
     meta.units = units.name;
     meta.offset = cloud.offset;
     meta.input = input_name;
-    io::OutputTransaction tx(out_dir);
+    meta.result_id = io::result_id(r.grow, grow, meta);
+    io::OutputTransaction tx(out_dir, io::is_result_file);
     const io::OccupancySummary occupancy =
         io::stage_result(tx, cloud, pipeline.config(), r, meta, outputs.files);
     if (outputs.picture) {

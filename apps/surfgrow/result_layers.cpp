@@ -4,6 +4,7 @@
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/coverage_io.hpp"
 #include "surfgrow/io/planes_io.hpp"
+#include "surfgrow/io/result_folder.hpp"
 #include "surfgrow/planes/bound_planes.hpp"
 #include "surfgrow/robot/coverage.hpp"
 
@@ -19,16 +20,8 @@ std::optional<std::vector<PlaneOutline>> read_planes_layer(const fs::path& dir,
     std::error_code ec;
     if (!fs::exists(file, ec)) return std::nullopt;
     const io::StoredPlanes stored = io::read_planes_json(file);
-    if (stored.meta.units != result.meta.units)
-        throw Error(ErrorCode::kMalformedInput,
-                    cat({file.string(), ": lengths are in \"", stored.meta.units,
-                         "\" but surfaces.json's are in \"", result.meta.units, "\""}));
-    if (stored.planes.stats.patches != result.surfaces.size())
-        throw Error(
-            ErrorCode::kMalformedInput,
-            cat({file.string(), " was computed from ", std::to_string(stored.planes.stats.patches),
-                 " surfaces but ", (dir / "surfaces.json").string(), " has ",
-                 std::to_string(result.surfaces.size()), ": run `surfgrow planes` again"}));
+    io::check_derived_file(file, stored.meta, stored.planes.stats.patches, result,
+                           "run `surfgrow planes` again");
     // Into the result's frame: file coordinates are the planes' frame plus their offset.
     const Vec3d shift = stored.meta.offset - result.meta.offset;
     std::vector<PlaneOutline> planes;
@@ -65,10 +58,8 @@ std::optional<CoveragePath> read_coverage_layer(const fs::path& dir,
     std::error_code ec;
     if (!fs::exists(file, ec)) return std::nullopt;
     const io::StoredCoverage stored = io::read_coverage_json(file);
-    if (stored.meta.units != result.meta.units)
-        throw Error(ErrorCode::kMalformedInput,
-                    cat({file.string(), ": lengths are in \"", stored.meta.units,
-                         "\" but surfaces.json's are in \"", result.meta.units, "\""}));
+    io::check_derived_file(file, stored.meta, std::nullopt, result,
+                           "run `surfgrow coverage` again");
     const Vec3d shift = stored.meta.offset - result.meta.offset;
     CoveragePath path;
     path.goals.reserve(stored.plan.goals.size());

@@ -178,6 +178,20 @@ std::string raw_scan_name(std::size_t k) {
     return buf;
 }
 
+namespace {
+
+// The files a scan folder holds: a new scan replaces them all, so no scan-NNN.sgraw of an earlier
+// scan with more poses survives beside the new cloud.
+bool is_scan_file(std::string_view name) {
+    if (name.starts_with("scan-") && name.ends_with(".sgraw")) return true;
+    for (const std::string_view n :
+         {"cloud.ply", "truth-faces.json", "scene.json", "poses.txt", "scan.json"})
+        if (n == name) return true;
+    return false;
+}
+
+}  // namespace
+
 void write_scan_outputs(const fs::path& dir, const ScanData& d, const ScanSettings& s) {
     std::vector<std::uint64_t> per_scan(d.raws.size(), 0);
     for (const std::uint32_t k : d.cloud.scan_index) ++per_scan[k];
@@ -210,7 +224,7 @@ void write_scan_outputs(const fs::path& dir, const ScanData& d, const ScanSettin
           {"poses", "poses.txt"}}},
     };
 
-    io::OutputTransaction tx(dir);
+    io::OutputTransaction tx(dir, is_scan_file);
     for (std::size_t k = 0; k < d.raws.size(); ++k)
         tx.add(raw_scan_name(k), [&](std::ostream& o) { o << io::encode_raw_scan(d.raws[k]); });
     tx.add("cloud.ply", [&](std::ostream& o) {

@@ -436,7 +436,10 @@ void publish_study(const std::filesystem::path& out,
                    const std::vector<std::pair<std::string, std::string>>& csv_files,
                    const Plots& plots, const std::string& record_name, const nlohmann::json& record,
                    std::string_view written) {
-    io::OutputTransaction tx(out);
+    // A new study or sweep replaces the earlier one's tables, plots and record as a whole.
+    io::OutputTransaction tx(out, [&](std::string_view name) {
+        return name == record_name || name.ends_with(".csv") || name.ends_with(".png");
+    });
     // (Not structured bindings: clang 14 cannot capture them in a lambda.)
     for (const auto& file : csv_files)
         tx.add(file.first, [&](std::ostream& o) { o << file.second; });

@@ -1,17 +1,20 @@
 // End-to-end tests of `surfgrow grow`: the real binary on real files.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
 
 #include "cli_support.hpp"
 #include "support/test_support.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/io/atomic_output.hpp"
 #include "surfgrow/io/cloud_io.hpp"
 #include "surfgrow/io/results_io.hpp"
 
@@ -239,6 +242,76 @@ TEST_F(CliGrow, AFailedRunNeverTouchesAGoodOutput) {
     EXPECT_EQ(test::read_bytes(dir_ / "out" / "surfaces.json"), before);
     for (const auto& e : fs::directory_iterator(dir_ / "out"))
         EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+// A new run replaces every output of the earlier one, written again or not, and keeps the user's
+// own files; nothing of the staging is left beside the folder.
+TEST_F(CliGrow, ARunReplacesEveryEarlierOutputAndKeepsTheUsersFiles) {
+    const fs::path out = dir_ / "out";
+    ASSERT_EQ(surfgrow("grow " + q(input_) + " -o " + q(out) + " --no-picture").code, 0);
+    ASSERT_TRUE(fs::exists(out / "planes.json") && fs::exists(out / "coverage.json"));
+    test::write_bytes(out / "notes.txt", "blasting starts at 9");
+    const CliRun r = surfgrow("grow " + q(input_) + " --seed 7 --no-planes --no-coverage -o " +
+                              q(out) + "/ --no-picture");
+    ASSERT_EQ(r.code, 0) << r.out;
+    for (const char* stale : {"planes.json", "planes.ply", "coverage.json", "coverage.csv"})
+        EXPECT_FALSE(fs::exists(out / stale)) << stale << " of the earlier run survived";
+    EXPECT_EQ(test::read_bytes(out / "notes.txt"), "blasting starts at 9");
+    EXPECT_TRUE(fs::exists(out / "surfaces.json"));
+    for (const auto& e : fs::directory_iterator(dir_.path())) {
+        const std::string name = e.path().filename().string();
+        EXPECT_TRUE(name == "out" || name == ".out.lock" || name == "box.ply") << name;
+    }
+}
+
+// Every file records the result it belongs to: a planes.json copied in from another result is
+// refused by name, even with as many surfaces; new planes drop the coverage planned from the old.
+TEST_F(CliGrow, FilesOfAnotherResultAreRefused) {
+    const fs::path a = dir_ / "a", b = dir_ / "b";
+    ASSERT_EQ(surfgrow("grow " + q(input_) + " -o " + q(a) + " --no-picture").code, 0);
+    ASSERT_EQ(surfgrow("grow " + q(input_) + " --seed 7 -o " + q(b) + " --no-picture").code, 0);
+    const io::StoredResult ra = io::read_result_json(a / "surfaces.json");
+    const io::StoredResult rb = io::read_result_json(b / "surfaces.json");
+    ASSERT_EQ(ra.meta.result_id.size(), 16u);
+    EXPECT_NE(ra.meta.result_id, rb.meta.result_id);
+    for (const char* file :
+         {"planes.json", "coverage.json", "occupancy.json", "collision_spheres.json"}) {
+        const auto j = nlohmann::json::parse(test::read_bytes(a / file));
+        EXPECT_EQ(j.at("result_id"), ra.meta.result_id) << file;
+    }
+    EXPECT_NE(test::read_bytes(a / "surfaces.ply").find("comment result_id " + ra.meta.result_id),
+              std::string::npos);
+
+    fs::copy_file(b / "planes.json", a / "planes.json", fs::copy_options::overwrite_existing);
+    for (const std::string& cmd :
+         {"coverage " + q(a), "render " + q(a) + " --color-by plane -o " + q(dir_ / "p.png"),
+          "view " + q(a) + " -o " + q(dir_ / "v.html")}) {
+        const CliRun r = surfgrow(cmd);
+        EXPECT_EQ(r.code, static_cast<int>(ErrorCode::kMalformedInput)) << cmd << ": " << r.out;
+        EXPECT_NE(r.out.find("planes.json belongs to another result"), std::string::npos)
+            << cmd << ": " << r.out;
+    }
+
+    // `surfgrow planes` makes them again and removes the coverage planned from the old ones.
+    const CliRun p = surfgrow("planes " + q(a) + " --cloud " + q(input_));
+    ASSERT_EQ(p.code, 0) << p.out;
+    EXPECT_NE(p.out.find("coverage.json"), std::string::npos) << p.out;
+    EXPECT_FALSE(fs::exists(a / "coverage.json"));
+    EXPECT_FALSE(fs::exists(a / "coverage.csv"));
+    EXPECT_EQ(surfgrow("coverage " + q(a) + " -q").code, 0);
+}
+
+// One writer per folder: a second run is refused while the first holds it, naming the first.
+TEST_F(CliGrow, ASecondRunIntoAFolderBeingWrittenIsRefused) {
+    const fs::path out = dir_ / "out";
+    std::optional<io::OutputTransaction> first(std::in_place, out);
+    const CliRun r = surfgrow("grow " + q(input_) + " -o " + q(out));
+    EXPECT_EQ(r.code, static_cast<int>(ErrorCode::kCannotWrite)) << r.out;
+    EXPECT_NE(r.out.find("another surfgrow run (pid " + std::to_string(::getpid()) + ")"),
+              std::string::npos)
+        << r.out;
+    first.reset();
+    EXPECT_EQ(surfgrow("grow " + q(input_) + " -o " + q(out) + " --no-picture").code, 0);
 }
 
 TEST_F(CliGrow, EmptyCloudIsNotAnError) {

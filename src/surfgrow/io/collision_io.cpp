@@ -37,6 +37,7 @@ void write_collision_spheres_json(std::ostream& out, const CollisionSpheres& sph
         {"version", 1},
         {"units", meta.units},
         {"input", meta.input},
+        {"result_id", meta.result_id},
         {"what",
          "one sphere per surface: centre at its home point, radius its neighbourhood "
          "radius (paper 5.5); id = surface id; rows are [x, y, z, radius]"},
@@ -94,6 +95,7 @@ void write_collision_report_json(std::ostream& out, const CollisionSpheres& sphe
         {"version", 1},
         {"units", meta.units},
         {"input", meta.input},
+        {"result_id", meta.result_id},
         {"robot", request.robot},
         {"tolerance", request.tolerance},
         {"environment_spheres", spheres.size()},

@@ -35,6 +35,7 @@ void write_coverage_json(std::ostream& out, const CoveragePlan& plan, const Resu
         {"units", meta.units},
         {"offset", vec_json(meta.offset)},
         {"input", meta.input},
+        {"result_id", meta.result_id},
         {"parameters",
          {{"blast_radius", c.blast_radius},
           {"standoff", c.standoff},
@@ -156,6 +157,8 @@ StoredCoverage read_coverage_json(const std::filesystem::path& file) {
         r.meta.units = string_of(j.at("units"), "units");
         r.meta.offset = vec_of(j.at("offset"), "offset");
         r.meta.input = j.contains("input") ? string_of(j.at("input"), "input") : std::string();
+        r.meta.result_id =
+            j.contains("result_id") ? string_of(j.at("result_id"), "result_id") : std::string();
         const json& p = j.at("parameters");
         CoverageConfig& c = plan.config;
         c.blast_radius = p.at("blast_radius").get<double>();

@@ -58,6 +58,7 @@ void write_planes_json(std::ostream& out, const BoundPlanes& planes, const Resul
         {"units", meta.units},
         {"offset", vec_json(meta.offset)},
         {"input", meta.input},
+        {"result_id", meta.result_id},
         {"parameters",
          {{"mu", c.mu},
           {"max_angle_deg", c.max_angle_deg},
@@ -132,6 +133,8 @@ StoredPlanes read_planes_json(const std::filesystem::path& file) {
         r.meta.units = string_of(j.at("units"), "units");
         r.meta.offset = vec_of(j.at("offset"), "offset");
         r.meta.input = j.contains("input") ? string_of(j.at("input"), "input") : std::string();
+        r.meta.result_id =
+            j.contains("result_id") ? string_of(j.at("result_id"), "result_id") : std::string();
         const json& p = j.at("parameters");
         BoundPlaneConfig& c = bp.config;
         c.mu = p.at("mu").get<double>();
@@ -222,6 +225,7 @@ void write_planes_ply(std::ostream& out, const PlaneMesh& mesh, const ResultMeta
     head << "ply\nformat binary_little_endian 1.0\n"
          << "comment surfgrow bound planes: triangulated boundary polygons, plane id per face\n"
          << "comment units " << meta.units << "\n"
+         << "comment result_id " << meta.result_id << "\n"
          << "element vertex " << mesh.vertices.size() << "\n"
          << "property " << pos << " x\nproperty " << pos << " y\nproperty " << pos << " z\n"
          << "property float nx\nproperty float ny\nproperty float nz\nproperty int plane\n"

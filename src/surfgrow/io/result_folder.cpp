@@ -27,6 +27,26 @@ ResultFolder read_result_folder(const fs::path& dir) {
     return folder;
 }
 
+void check_derived_file(const fs::path& file, const ResultMeta& meta,
+                        std::optional<std::size_t> surfaces, const StoredResult& result,
+                        std::string_view redo) {
+    const fs::path surfaces_json = file.parent_path() / "surfaces.json";
+    if (!result.meta.result_id.empty() && meta.result_id != result.meta.result_id)
+        throw Error(ErrorCode::kMalformedInput,
+                    cat({file.string(), " belongs to another result (result_id \"", meta.result_id,
+                         "\", ", surfaces_json.string(), " has \"", result.meta.result_id,
+                         "\"): left from an earlier run or copied from another folder; ", redo}));
+    if (meta.units != result.meta.units)
+        throw Error(ErrorCode::kMalformedInput,
+                    cat({file.string(), ": lengths are in \"", meta.units, "\" but ",
+                         surfaces_json.string(), "'s are in \"", result.meta.units, "\"; ", redo}));
+    if (surfaces && *surfaces != result.surfaces.size())
+        throw Error(ErrorCode::kMalformedInput,
+                    cat({file.string(), " was computed from ", std::to_string(*surfaces),
+                         " surfaces but ", surfaces_json.string(), " has ",
+                         std::to_string(result.surfaces.size()), "; ", redo}));
+}
+
 GrownCloud read_grown_cloud(const fs::path& cloud_file, const ResultFolder& folder) {
     GrownCloud g;
     g.cloud = read_cloud(cloud_file, kPointsOnly);

@@ -4,7 +4,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "surfgrow/core/point_cloud.hpp"
@@ -21,6 +23,14 @@ struct ResultFolder {
 /// Reads dir/surfaces.json. Throws Error(kCannotOpen) if `dir` is not a folder or has no
 /// surfaces.json, Error(kMalformedInput) if that file is not a surfgrow result.
 [[nodiscard]] ResultFolder read_result_folder(const std::filesystem::path& dir);
+
+/// Throws Error(kMalformedInput) naming `file` unless it belongs to `result`, the folder's
+/// surfaces.json: the same result_id (when both have one: older folders have none), the same
+/// units, and, when `surfaces` is given, computed from as many surfaces. `redo` says how to make
+/// the file again (e.g. "run `surfgrow planes` again").
+void check_derived_file(const std::filesystem::path& file, const ResultMeta& meta,
+                        std::optional<std::size_t> surfaces, const StoredResult& result,
+                        std::string_view redo);
 
 /// The cloud a result was grown from, in the result's frame (positions relative to its offset),
 /// with the surface of each point from labels.txt (empty when the folder has none).

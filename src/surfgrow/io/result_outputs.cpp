@@ -10,6 +10,29 @@
 
 namespace surfgrow::io {
 
+bool is_result_file(std::string_view file_name) {
+    static constexpr std::string_view kNames[] = {"surfaces.ply",
+                                                  "surfaces.json",
+                                                  "labels.txt",
+                                                  "surfaces.csv",
+                                                  "planes.json",
+                                                  "planes.ply",
+                                                  "planes.obj",
+                                                  "coverage.json",
+                                                  "coverage.csv",
+                                                  "occupancy.ply",
+                                                  "occupancy.json",
+                                                  "environment.bt",
+                                                  "collision_spheres.json",
+                                                  "surfaces.png",
+                                                  "run.json",
+                                                  "eval.json",
+                                                  "collision.json"};
+    for (const std::string_view n : kNames)
+        if (n == file_name) return true;
+    return false;
+}
+
 OccupancySummary stage_result(OutputTransaction& tx, const PointCloud& cloud,
                               const PipelineConfig& config, const PipelineResult& result,
                               const ResultMeta& meta, const ResultFiles& files) {
@@ -37,7 +60,12 @@ void stage_planes(OutputTransaction& tx, const BoundPlanes& planes, const Result
     const PlaneMesh mesh = mesh_bound_planes(planes);
     tx.add("planes.json", [&](std::ostream& o) { write_planes_json(o, planes, meta); });
     tx.add("planes.ply", [&](std::ostream& o) { write_planes_ply(o, mesh, meta); });
-    if (obj) tx.add("planes.obj", [&](std::ostream& o) { write_planes_obj(o, mesh, meta); });
+    if (obj)
+        tx.add("planes.obj", [&](std::ostream& o) { write_planes_obj(o, mesh, meta); });
+    else
+        tx.drop("planes.obj");
+    // Planned or evaluated from the old planes: stale unless staged again.
+    for (const char* stale : {"coverage.json", "coverage.csv", "eval.json"}) tx.drop(stale);
 }
 
 void stage_coverage(OutputTransaction& tx, const CoveragePlan& plan, const ResultMeta& meta) {
@@ -51,6 +79,11 @@ OccupancySummary stage_occupancy(OutputTransaction& tx, const OccupancyGrid& gri
     OccupancySummary summary;
     summary.occupied_cubes = grid.size();
     summary.registered_points = grid.registered_points();
+    // An output not written again would describe another grid: it goes.
+    for (const auto& [written, name] : {std::pair{which.ply, "occupancy.ply"},
+                                        {which.octomap, "environment.bt"},
+                                        {which.json, "occupancy.json"}})
+        if (!written) tx.drop(name);
     if (which.ply)
         tx.add("occupancy.ply", [&](std::ostream& o) { write_occupancy_ply(o, grid, meta); });
     if (which.octomap) {

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string_view>
 
 #include "surfgrow/core/grow_result.hpp"
 #include "surfgrow/core/grower_config.hpp"
@@ -42,6 +43,11 @@ struct OccupancySummary {
     OctomapSummary octomap;
 };
 
+/// Whether `file_name` is one of the files a result folder can hold (those below, surfaces.png,
+/// run.json, eval.json, collision.json): a new `surfgrow grow` into the folder replaces them all,
+/// written again or not, so no output of an earlier run survives beside the new result.
+[[nodiscard]] bool is_result_file(std::string_view file_name);
+
 /// Stages the files of `result`, computed over `cloud` by a Pipeline with `config`: surfaces.ply,
 /// surfaces.json and, as `files` and the result have them, labels.txt, surfaces.csv, planes.*,
 /// coverage.*, occupancy.*, environment.bt, collision_spheres.json. Returns what the occupancy
@@ -50,7 +56,8 @@ OccupancySummary stage_result(OutputTransaction& tx, const PointCloud& cloud,
                               const PipelineConfig& config, const PipelineResult& result,
                               const ResultMeta& meta, const ResultFiles& files = {});
 
-/// Stages planes.json, planes.ply and, with `obj`, planes.obj.
+/// Stages planes.json, planes.ply and, with `obj`, planes.obj; drops what the new planes make
+/// stale (planes.obj without `obj`, coverage.*, eval.json) unless staged again.
 void stage_planes(OutputTransaction& tx, const BoundPlanes& planes, const ResultMeta& meta,
                   bool obj);
 
@@ -59,7 +66,8 @@ void stage_coverage(OutputTransaction& tx, const CoveragePlan& plan, const Resul
 
 /// Stages occupancy.ply, environment.bt and occupancy.json for `grid`, the occupancy grid of
 /// (cloud, config) (see occupancy_io.hpp and octomap_export.hpp). The OctoMap's rays are cast to
-/// the grown points (finite, inside the crop) from sensor_origins(cloud, config). Throws what
+/// the grown points (finite, inside the crop) from sensor_origins(cloud, config). Drops the
+/// occupancy files `which` leaves out (they described another grid). Throws what
 /// write_octomap_bt() throws.
 OccupancySummary stage_occupancy(OutputTransaction& tx, const OccupancyGrid& grid,
                                  const PointCloud& cloud, const GrowerConfig& config,

@@ -57,6 +57,63 @@ Vec3d vec_of(const nlohmann::json& j) {
 
 }  // namespace
 
+namespace {
+
+// FNV-style word mixing: deterministic across platforms and runs, a few ms for a million labels.
+class Hash64 {
+  public:
+    void add(std::uint64_t v) {
+        h_ ^= v;
+        h_ *= 0x100000001b3ULL;
+        h_ ^= h_ >> 29;
+    }
+    void add(double v) { add(std::bit_cast<std::uint64_t>(v)); }
+    void add(const Vec3d& v) {
+        for (int a = 0; a < 3; ++a) add(v[a]);
+    }
+    void add(std::string_view s) {
+        add(static_cast<std::uint64_t>(s.size()));
+        for (std::size_t i = 0; i < s.size(); i += 8) {
+            std::uint64_t w = 0;
+            std::memcpy(&w, s.data() + i, std::min<std::size_t>(8, s.size() - i));
+            add(w);
+        }
+    }
+    [[nodiscard]] std::string hex() const {
+        char buf[17];
+        std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h_));
+        return buf;
+    }
+
+  private:
+    std::uint64_t h_ = 0xcbf29ce484222325ULL;
+};
+
+}  // namespace
+
+std::string result_id(const GrowResult& result, const GrowerConfig& config,
+                      const ResultMeta& meta) {
+    Hash64 h;
+    h.add(parameters_json(config).dump());
+    h.add(std::string_view(meta.units));
+    h.add(meta.offset);
+    h.add(static_cast<std::uint64_t>(result.surfaces.size()));
+    for (const Surface& s : result.surfaces) {
+        h.add(s.home);
+        h.add(s.normal);
+        h.add(s.radius);
+        h.add(static_cast<std::uint64_t>(s.point_count));
+    }
+    const std::span<const std::int32_t> labels = result.labels;
+    h.add(static_cast<std::uint64_t>(labels.size()));
+    for (std::size_t i = 0; i < labels.size(); i += 2) {
+        const auto lo = static_cast<std::uint32_t>(labels[i]);
+        const auto hi = i + 1 < labels.size() ? static_cast<std::uint32_t>(labels[i + 1]) : 0u;
+        h.add(std::uint64_t{hi} << 32 | lo);
+    }
+    return h.hex();
+}
+
 nlohmann::json parameters_json(const GrowerConfig& c) {
     nlohmann::json p = {
         {"mu", c.mu},
@@ -146,6 +203,7 @@ void write_surfaces_ply(std::ostream& out, std::span<const Surface> surfaces,
     out << "ply\nformat binary_little_endian 1.0\n"
         << "comment surfgrow surfaces: one vertex per surface at its home point, with its normal\n"
         << "comment units " << meta.units << "\n"
+        << "comment result_id " << meta.result_id << "\n"
         << "element vertex " << surfaces.size() << "\n"
         << "property " << pos << " x\nproperty " << pos << " y\nproperty " << pos << " z\n"
         << "property float nx\nproperty float ny\nproperty float nz\n"
@@ -175,6 +233,7 @@ void write_result_json(std::ostream& out, const GrowResult& result, const Grower
         {"units", meta.units},
         {"offset", {meta.offset.x(), meta.offset.y(), meta.offset.z()}},
         {"input", meta.input},
+        {"result_id", meta.result_id},
         {"parameters", parameters_json(config)},
         {"summary", summary_json(result.stats)},
     };
@@ -294,6 +353,7 @@ StoredResult read_result_json(const std::filesystem::path& file) {
         r.meta.units = j.at("units").get<std::string>();
         r.meta.offset = vec_of(j.at("offset"));
         r.meta.input = j.value("input", "");
+        r.meta.result_id = j.value("result_id", "");
         const auto& p = j.at("parameters");
         r.config.mu = p.at("mu").get<double>();
         r.config.min_pts = p.at("min_pts").get<int>();

@@ -18,7 +18,17 @@ struct ResultMeta {
     std::string units = "m";       ///< the cloud's length unit, which every length is in
     Vec3d offset = Vec3d::Zero();  ///< PointCloud::offset: added to every position written
     std::string input;             ///< the input file's name, for the record
+    /// result_id() of the grown result every file of a folder was derived from (empty in
+    /// folders written before it existed). Readers refuse a file whose id is not surfaces.json's.
+    std::string result_id;
 };
+
+/// A deterministic 16-hex-digit id of a grown result: a hash of its parameters, units, offset,
+/// surfaces and labels. Written into every JSON and PLY file of a result folder, so a file left
+/// from another run or copied from another folder is recognised; the same input, parameters and
+/// seed give the same id, keeping outputs byte-identical.
+[[nodiscard]] std::string result_id(const GrowResult& result, const GrowerConfig& config,
+                                    const ResultMeta& meta);
 
 /// surfaces.ply: one vertex per surface at its home point with its unit normal (nx, ny, nz), so
 /// Open3D, PCL and CloudCompare open it as a point cloud with normals; extra properties radius,
