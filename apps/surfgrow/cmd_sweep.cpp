@@ -26,8 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kMaxMinPts = 100000;
-
 struct SweepArgs {
     std::string input;
     std::string out = "sweep";

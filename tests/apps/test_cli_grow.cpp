@@ -193,7 +193,7 @@ TEST_F(CliGrow, BadInputsGiveDistinctCodesAndNoOutput) {
          ErrorCode::kInvalidParameter, "mu"},
         {"mu negative", [](auto&, auto& good) { return q(good) + " --mu -5mm"; },
          ErrorCode::kInvalidParameter, "mu"},
-        {"mu beyond the cloud", [](auto&, auto& good) { return q(good) + " --mu 1e40m"; },
+        {"mu beyond the cloud", [](auto&, auto& good) { return q(good) + " --mu 1e30m"; },
          ErrorCode::kInvalidParameter, "larger than the whole cloud"},
         {"mu without unit", [](auto&, auto& good) { return q(good) + " --mu 12"; },
          ErrorCode::kUsage, "unit"},

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <random>
 
@@ -370,7 +371,7 @@ TEST(SurfaceGrower, MuBeyondTheWholeCloudIsRefused) {
     Aabb box;
     for (const Vec3f& p : s.cloud.points) box.add(p.cast<double>());
     const double diagonal = box.size().norm();
-    for (const double mu : {1.01 * diagonal, 1e3, 1e40}) {
+    for (const double mu : {1.01 * diagonal, 1e3, 1e30}) {
         GrowerConfig cfg = config_mm();
         cfg.mu = mu;
         try {
@@ -385,6 +386,62 @@ TEST(SurfaceGrower, MuBeyondTheWholeCloudIsRefused) {
     GrowerConfig cfg = config_mm();
     cfg.mu = 0.9 * diagonal;
     EXPECT_NO_THROW((void)grow_surfaces(s.cloud, cfg));
+}
+
+// Lengths the cloud's float coordinates cannot express are refused by name, whatever else is
+// set; so are a mu finer than the coordinates resolve, absurd counts and angles. The rules live
+// here, so the CLI and Python get the same answers.
+TEST(SurfaceGrower, AbsurdParametersAreRefusedByName) {
+    const Scene s =
+        sample_scene({{{0, 0, 0.5}, Vec3d::UnitX(), Vec3d::UnitY(), 0.2, 0.15}}, 0.004, 0.0, 1);
+    auto message = [&](auto set) -> std::string {
+        GrowerConfig cfg = config_mm();
+        set(cfg);
+        try {
+            (void)grow_surfaces(s.cloud, cfg);
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ErrorCode::kInvalidParameter) << e.what();
+            return e.what();
+        }
+        return "accepted";
+    };
+    const std::pair<std::string, std::function<void(GrowerConfig&)>> cases[] = {
+        {"mu = 1e+40 is beyond the range of float coordinates", [](auto& c) { c.mu = 1e40; }},
+        {"mu = nan is not a finite length", [](auto& c) { c.mu = std::nan(""); }},
+        {"range band = 1e-300 is below the smallest length",
+         [](auto& c) { c.range_band = 1e-300; }},
+        {"plane tolerance = inf", [](auto& c) { c.plane_tolerance = INFINITY; }},
+        {"pool radius = 1e+39", [](auto& c) { c.pool_radius = 1e39; }},
+        {"crop radius = 1e+300", [](auto& c) { c.crop.radius = 1e300; }},
+        {"crop box corner = -1e+39",
+         [](auto& c) {
+             c.crop.box = Aabb{Vec3d(-1e39, 0, 0), Vec3d(1, 1, 1)};
+         }},
+        {"viewpoint = 1e+300", [](auto& c) { c.viewpoint = Vec3d(1e300, 0, 0); }},
+        {"crop centre = nan",
+         [](auto& c) {
+             c.crop.radius = 1;
+             c.crop.center = Vec3d(0, std::nan(""), 0);
+         }},
+        {"mu = 1e-09 is finer than the cloud's float coordinates resolve",
+         [](auto& c) { c.mu = 1e-9; }},
+        {"min-pts must be at most 100000", [](auto& c) { c.min_pts = kMaxMinPts + 1; }},
+        {"pool-angle must lie in [0, 90)", [](auto& c) { c.pool_angle_deg = 90; }},
+        {"pool-angle must lie in [0, 90)", [](auto& c) { c.pool_angle_deg = std::nan(""); }},
+        {"pool radius must be a length >= 0", [](auto& c) { c.pool_radius = -1; }},
+    };
+    for (const auto& [expected, set] : cases)
+        EXPECT_NE(message(set).find(expected), std::string::npos)
+            << expected << ": " << message(set);
+    // Within the float range and the cloud, huge lengths are computed, not refused.
+    EXPECT_EQ(message([](auto& c) {
+                  c.range_band = 1e38;
+                  c.crop.radius = 1e38;
+                  c.viewpoint = Vec3d(1e38, 0, 0);
+                  c.plane_tolerance = 1e38;
+              }),
+              "accepted");
+    EXPECT_EQ(message([](auto& c) { c.min_pts = kMaxMinPts; }), "accepted");
 }
 
 // More threads than a machine can use are clamped (100000 once crashed with SIGSEGV), and the

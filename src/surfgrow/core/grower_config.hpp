@@ -19,6 +19,9 @@ struct WorkspaceCrop {
     [[nodiscard]] bool active() const { return box.has_value() || radius.has_value(); }
 };
 
+/// The most neighbours min_pts may ask for: more than any neighbourhood of a real scan holds.
+inline constexpr int kMaxMinPts = 100000;
+
 /// Everything surface growing needs. Lengths are in the cloud's units; the defaults assume
 /// metres (the ROS / PCL / Open3D convention) and are the paper's values.
 struct GrowerConfig {

@@ -6,6 +6,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <initializer_list>
 #include <limits>
@@ -18,6 +19,7 @@
 #include "surfgrow/core/detail/neighbourhood.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/grown_points.hpp"
+#include "surfgrow/core/length_limits.hpp"
 #include "surfgrow/core/noise_profile.hpp"
 #include "surfgrow/core/plane_pooling.hpp"
 #include "surfgrow/core/random.hpp"
@@ -34,12 +36,31 @@ void validate(const GrowerConfig& c) {
     auto fail = [](std::initializer_list<std::string_view> what) {
         throw Error(ErrorCode::kInvalidParameter, cat(what));
     };
+    // Every length first within what float coordinates can express (1e40 once overflowed into a
+    // wrong message); then each parameter's own range.
+    check_length_range("mu", c.mu);
+    check_length_range("plane tolerance", c.plane_tolerance);
+    check_length_range("pool radius", c.pool_radius);
+    check_length_range("range band", c.range_band);
+    if (c.crop.radius) check_length_range("crop radius", *c.crop.radius);
+    if (c.crop.box)
+        for (int k = 0; k < 3; ++k) {
+            check_length_range("crop box corner", c.crop.box->min[k]);
+            check_length_range("crop box corner", c.crop.box->max[k]);
+        }
+    for (int k = 0; k < 3; ++k) {
+        if (c.crop.center) check_length_range("crop centre", (*c.crop.center)[k]);
+        if (c.viewpoint) check_length_range("viewpoint", (*c.viewpoint)[k]);
+    }
     if (!(c.mu > 0) || !std::isfinite(c.mu))
         fail({"mu must be a positive length, got ", num(c.mu)});
     if (c.min_new_points < 1)
         fail({"min-new-points must be at least 1, got ", num(c.min_new_points)});
     if (c.min_pts < 3)
         fail({"min-pts must be at least 3 (a plane needs 3 points), got ", num(c.min_pts)});
+    if (c.min_pts > kMaxMinPts)
+        fail({"min-pts must be at most ", std::to_string(kMaxMinPts),
+              " (more neighbours within mu than any scan holds), got ", std::to_string(c.min_pts)});
     if (!(c.alpha > 1) || !std::isfinite(c.alpha))
         fail({"alpha must be greater than 1 (eq. 2: min(lambda) < mid(lambda) / alpha), got ",
               num(c.alpha)});
@@ -57,6 +78,10 @@ void validate(const GrowerConfig& c) {
         fail({"thickness-sigmas must lie in [1, 100], got ", num(c.thickness_sigmas)});
     if (!(c.noise_sigmas >= 1 && c.noise_sigmas <= 100))
         fail({"noise-sigmas must lie in [1, 100], got ", num(c.noise_sigmas)});
+    if (!(c.pool_angle_deg >= 0 && c.pool_angle_deg < 90))
+        fail({"pool-angle must lie in [0, 90) degrees (0: off), got ", num(c.pool_angle_deg)});
+    if (!(c.pool_radius >= 0))
+        fail({"pool radius must be a length >= 0 (0 means 4 mu), got ", num(c.pool_radius)});
     if (c.threads < 0) fail({"threads must be >= 0 (0 = all cores), got ", num(c.threads)});
     if (!(c.range_band > 0) || !std::isfinite(c.range_band))
         fail({"range band must be a positive length, got ", num(c.range_band)});
@@ -1030,8 +1055,11 @@ std::vector<RangeBand> range_bands(const PointCloud& cloud, const Orientation& o
                 if (o >= origins.size()) o = 0;
             }
             const float r = (cloud.points[j] - origins[o]).norm();
+            // As std::min, but a NaN (a range from an infinitely far origin) goes to the last
+            // band instead of an undefined cast.
+            const float x = r * inv_band;
             const auto band =
-                static_cast<std::size_t>(std::min(r * inv_band, float(kMaxRangeBands - 1)));
+                x < float(kMaxRangeBands - 1) ? static_cast<std::size_t>(x) : kMaxRangeBands - 1;
             ++mine[band].points;
             mine[band].registered += l >= 0 ? 1 : 0;
         }
@@ -1101,6 +1129,33 @@ std::uint64_t drop_empty_surfaces(int threads, std::vector<Surface>& surfaces,
     return count - kept;
 }
 
+/// A mu finer than the float coordinates resolve at every point of the cloud cannot tell any
+/// neighbours apart (1e-300 m once reached the index as billions of cubes): a wrong unit or a
+/// typo, refused as the mu beyond the whole cloud is. Where some points resolve it (a cloud far
+/// larger than mu around the origin), growing there still means something and is left alone.
+void refuse_mu_below_resolution(const PointCloud& cloud, const WorkspaceMask& workspace, double mu,
+                                int threads) {
+    float nearest = std::numeric_limits<float>::infinity();  // the smallest largest |coordinate|
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(min : nearest)
+    for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+        const Vec3f& p = cloud.points[i];
+        if (!is_finite(p) || (!workspace.inside.empty() && !workspace.inside[i])) continue;
+        nearest = std::min(nearest, p.cwiseAbs().maxCoeff());
+    }
+    if (!std::isfinite(nearest)) return;  // no points: nothing to resolve
+    const double step =
+        double(std::nextafter(nearest, std::numeric_limits<float>::infinity()) - nearest);
+    if (mu < step) {
+        char where[80];
+        std::snprintf(where, sizeof where,
+                      "a step of %.3g even at its point nearest the origin, %.4g", step,
+                      double(nearest));
+        throw Error(ErrorCode::kInvalidParameter,
+                    cat({"mu = ", num(mu), " is finer than the cloud's float coordinates resolve (",
+                         where, "); check mu and the cloud's units"}));
+    }
+}
+
 }  // namespace
 
 SurfaceGrower::SurfaceGrower(GrowerConfig config) : config_(std::move(config)) {
@@ -1110,6 +1165,7 @@ SurfaceGrower::SurfaceGrower(GrowerConfig config) : config_(std::move(config)) {
 GrowIndex SurfaceGrower::index(const PointCloud& cloud) const {
     Stopwatch watch;
     WorkspaceMask workspace = workspace_mask(cloud, config_);
+    refuse_mu_below_resolution(cloud, workspace, config_.mu, resolve_threads(config_.threads));
     GrowIndex g;
     g.index =
         CubeIndex(cloud.points, config_.mu, workspace.inside, resolve_threads(config_.threads));
