@@ -328,8 +328,19 @@ TEST(BoundPlanes, RefusesInconsistentInputAndBadParameters) {
           with([](auto& c) { c.max_angle_deg = 0; }), with([](auto& c) { c.max_angle_deg = 90; }),
           with([](auto& c) { c.max_offset = -1e-3; }), with([](auto& c) { c.resolution = NAN; }),
           with([](auto& c) { c.resolution = 1e-9; }), with([](auto& c) { c.max_gap = INFINITY; }),
-          with([](auto& c) { c.closing_radius = -1; }), with([](auto& c) { c.threads = -2; })})
+          with([](auto& c) { c.closing_radius = -1; }), with([](auto& c) { c.threads = -2; }),
+          // Beyond float coordinates (1e308 once ended in std::terminate), and an adjacency that
+          // pairs every point with thousands (gigabytes within a minute).
+          with([](auto& c) { c.closing_radius = 1e308; }),
+          with([](auto& c) { c.resolution = 1e39; }), with([](auto& c) { c.max_gap = 1e-300; }),
+          with([](auto& c) { c.adjacency = 4.01 * c.mu; })})
         EXPECT_EQ(code(g.cloud, g.result, c), ErrorCode::kInvalidParameter);
+    // Large but float lengths give planes, computed on a coarser raster where they must.
+    for (const BoundPlaneConfig& c :
+         {with([](auto& c) { c.closing_radius = 1e38; }),
+          with([](auto& c) { c.resolution = 1e38; }), with([](auto& c) { c.max_gap = 1e38; }),
+          with([](auto& c) { c.adjacency = 4 * c.mu; })})
+        EXPECT_EQ(compute_bound_planes(g.cloud, g.result, c).planes.size(), 1u);
 }
 
 }  // namespace

@@ -246,5 +246,50 @@ TEST(Coverage, RefusesBadParameters) {
     EXPECT_THROW((void)plan_coverage(no_mu, kNoSurfaces, CoverageConfig{}), Error);
 }
 
+// Lengths beyond float coordinates are refused (1e308 once hung); a blast radius too small for
+// the planes is refused before minutes of work (1 um once did, then a bad_alloc in a parallel
+// loop ended in std::terminate); a huge one, or a planning grid finer than any raster, is planned
+// correctly.
+TEST(Coverage, AbsurdLengthsAreRefusedOrPlanned) {
+    auto message = [](const CoverageConfig& c) -> std::string {
+        try {
+            (void)plan_coverage(corner(), kNoSurfaces, c);
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ErrorCode::kInvalidParameter) << e.what();
+            return e.what();
+        }
+        return "";
+    };
+    CoverageConfig c;
+    c.blast_radius = 1e308;
+    EXPECT_NE(message(c).find("blast radius = 1e+308 is beyond the range of float"),
+              std::string::npos);
+    c.blast_radius = 1e-6;
+    EXPECT_NE(message(c).find("blast radius 1e-06 is too small for planes up to 0.4"),
+              std::string::npos)
+        << message(c);
+    c = {};
+    c.standoff = 1e-300;
+    EXPECT_NE(message(c).find("standoff = 1e-300 is below the smallest length"), std::string::npos);
+    c = {};
+    c.start = Vec3d(0, 0, 1e39);
+    EXPECT_NE(message(c).find("start position = 1e+39"), std::string::npos);
+
+    c = {};
+    c.blast_radius = 1e38;  // one goal covers each plane
+    const CoveragePlan huge = plan_coverage(corner(), kNoSurfaces, c);
+    EXPECT_EQ(huge.stats.goals, 3u);
+    EXPECT_NEAR(huge.stats.coverage, 1.0, 1e-9);
+    c = {};
+    c.sample_spacing = 1e-30;  // once minutes of work: (blast radius / spacing)^4
+    EXPECT_NE(message(c).find("sample spacing 1e-30 is finer than the blast radius / 16"),
+              std::string::npos)
+        << message(c);
+    c.sample_spacing = 0.012 / 16;  // the finest allowed is planned
+    const CoveragePlan fine = plan_coverage(corner(), kNoSurfaces, c);
+    EXPECT_GT(fine.stats.goals, 3u);
+    EXPECT_GT(fine.stats.coverage, 0.9);
+}
+
 }  // namespace
 }  // namespace surfgrow

@@ -39,7 +39,11 @@ struct BoundPlaneConfig {
     int threads = 0;                  ///< 0 = all cores; the result does not depend on it
 };
 
-/// Throws Error(kInvalidParameter) naming the first parameter out of range.
+/// The largest adjacency distance, in mu: beyond it every point is paired with thousands.
+inline constexpr double kMaxAdjacencyPerMu = 4.0;
+
+/// Throws Error(kInvalidParameter) naming the first parameter out of range: every length within
+/// float coordinates' range (length_limits.hpp), the adjacency at most kMaxAdjacencyPerMu mu.
 void validate(const BoundPlaneConfig& config);
 
 /// One planar region: a structural face (a flange, a web, the deck).

@@ -40,6 +40,11 @@ void distance_1d(const double* f, int n, double* d, int* v, double* z) {
 
 // Grows `cell` until the box [lo, hi] fits in kMaxRasterCells cells with `margin_len` around it.
 double fitting_cell(const Vec2d& lo, const Vec2d& hi, double cell, double margin_len) {
+    // No fitting cell is finer than this (a side of more than kMaxRasterCells cells never fits):
+    // starting there keeps w * h finite for a cell of 1e-300 (which once overflowed to a NaN
+    // raster), and changes no cell that fits.
+    const double side = std::max(hi.x() - lo.x(), hi.y() - lo.y()) + 2 * margin_len;
+    cell = std::max(cell, side / double(kMaxRasterCells));
     for (int guard = 0; guard < 64; ++guard) {
         const double w = std::floor((hi.x() - lo.x() + 2 * margin_len) / cell) + 5;
         const double h = std::floor((hi.y() - lo.y() + 2 * margin_len) / cell) + 5;

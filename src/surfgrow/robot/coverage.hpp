@@ -29,7 +29,14 @@ struct CoverageConfig {
     int threads = 0;              ///< 0 = all cores; the result does not depend on it
 };
 
-/// Throws Error(kInvalidParameter) naming the first parameter out of range.
+/// The most goal candidates (points of the hexagonal lattice over the planes' extents) a plan may
+/// need: a blast radius too small for its planes is refused before minutes of work.
+inline constexpr double kMaxGoalCandidates = 1e8;
+/// The planning grid (sample_spacing) is at least the blast radius over this.
+inline constexpr double kMaxSamplesPerBlastRadius = 16;
+
+/// Throws Error(kInvalidParameter) naming the first parameter out of range: every length within
+/// float coordinates' range (length_limits.hpp), then each one's own rule.
 void validate(const CoverageConfig& config);
 
 /// One goal on a plane, in path order, with the tool's approach pose.
