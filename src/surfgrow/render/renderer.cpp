@@ -106,7 +106,8 @@ void validate(const RenderOptions& o) {
                      " pixels a side and at most 64 Mpixel, got ", num(o.width), " x ",
                      num(o.height)}));
     check_range("supersample", o.supersample, 1, 4);
-    check_range("threads", o.threads, 0, 1024);
+    // Any count: resolve_threads clamps it to what the machine can use, as for every stage.
+    check_range("threads", o.threads, 0, std::numeric_limits<int>::max());
     check_range("margin", o.margin, 0, 0.4);
     check_range("point_size", o.point_size, 0.1, 64);
     check_range("line_width", o.line_width, 0.1, 64);

@@ -6,6 +6,7 @@
 
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/core/threads.hpp"
 #include "surfgrow/scanner/range_filter.hpp"
 #include "surfgrow/scanner/tilting_scanner.hpp"
 
@@ -53,7 +54,7 @@ PointCloud fuse_scans(std::span<const RawScan> scans, const FuseOptions& options
         const TiltingScanner scanner(scan.spec);
         const std::size_t rays = scan.spec.rays();
         std::vector<double> range_mm(rays);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(resolve_threads(0))
         for (std::size_t r = 0; r < rays; ++r) range_mm[r] = filter(scan.ray_readings(r));
 
         const int steps = scanner.step_count();

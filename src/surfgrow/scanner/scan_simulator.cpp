@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "surfgrow/core/random.hpp"
+#include "surfgrow/core/threads.hpp"
 
 namespace surfgrow::scanner {
 
@@ -108,7 +109,7 @@ SimulatedScan ScanSimulator::simulate(const Pose& pose, std::uint64_t seed) cons
     };
 
     // Pass 1: the centre ray of every beam.
-#pragma omp parallel for schedule(dynamic, 4)
+#pragma omp parallel for schedule(dynamic, 4) num_threads(resolve_threads(0))
     for (int i = 0; i < tilts; ++i) {
         const Vec3d origin = pose * scanner_.optical_centre(i);
         for (int j = 0; j < steps; ++j) {
@@ -153,7 +154,7 @@ SimulatedScan ScanSimulator::simulate(const Pose& pose, std::uint64_t seed) cons
     const double rnd_share = std::sqrt(1.0 - noise_.systematic_fraction);
 
     // Pass 2: sub-rays near edges, then the n noisy readings of each beam.
-#pragma omp parallel for schedule(dynamic, 4)
+#pragma omp parallel for schedule(dynamic, 4) num_threads(resolve_threads(0))
     for (int i = 0; i < tilts; ++i) {
         const Vec3d origin = pose * scanner_.optical_centre(i);
         for (int j = 0; j < steps; ++j) {
