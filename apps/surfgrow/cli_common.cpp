@@ -9,10 +9,14 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <limits>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/core/length_limits.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/core/threads.hpp"
 
@@ -27,14 +31,32 @@ namespace {
     throw Error(ErrorCode::kUsage, message);
 }
 
-// Splits "12.5mm" into the number and the unit text; false if there is no number.
-bool split_number(std::string_view text, double& value, std::string_view& unit) {
+[[noreturn]] void range_error(std::string_view option, std::string_view text,
+                              std::string_view why) {
+    throw Error(ErrorCode::kInvalidParameter, cat({option, ": ", trim(text), " ", why}));
+}
+
+// Splits "12.5mm" into the number and the unit text; false if there is no number. A number out
+// of the double's range ("1e400m") or not finite ("nanm", "infm") is a number, but no length:
+// refused here, naming the option.
+bool split_number(std::string_view text, double& value, std::string_view& unit,
+                  std::string_view option) {
     text = trim(text);
     const char* end = text.data() + text.size();
     auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (ec != std::errc() || !std::isfinite(value)) return false;
+    if (ec == std::errc::result_out_of_range)
+        range_error(option, text, "is beyond the range of any length (a double)");
+    if (ec != std::errc()) return false;
+    if (!std::isfinite(value)) range_error(option, text, "is not a finite length");
     unit = trim(std::string_view(ptr, static_cast<std::size_t>(end - ptr)));
     return true;
+}
+
+// A length in metres checked against what float coordinates can express (length_limits.hpp).
+double checked_length(double metres, std::string_view text, std::string_view option) {
+    if (const std::string_view why = length_range_problem(metres); !why.empty())
+        range_error(option, text, why);
+    return metres;
 }
 
 constexpr std::array<std::pair<std::string_view, double>, 4> kLengthUnits{
@@ -55,7 +77,7 @@ bool unit_scale(std::string_view unit, double& scale) {
 double parse_length_m(std::string_view text, std::string_view option) {
     double value = 0;
     std::string_view unit;
-    if (!split_number(text, value, unit))
+    if (!split_number(text, value, unit, option))
         usage_error(option, {"'", text, "' is not a length (expected e.g. 12mm or 0.012m)"});
     if (unit.empty())
         usage_error(option, {"'", text, "' has no unit; write e.g. ", trim(text), "mm or ",
@@ -63,7 +85,7 @@ double parse_length_m(std::string_view text, std::string_view option) {
     double scale = 1;
     if (!unit_scale(unit, scale))
         usage_error(option, {"unknown length unit '", unit, "' (use m, cm, mm)"});
-    return value * scale;
+    return checked_length(value * scale, text, option);
 }
 
 double unit_to_metres(std::string_view unit, std::string_view option) {
@@ -110,7 +132,7 @@ std::vector<double> parse_lengths_m(std::string_view text, std::string_view opti
     {
         double value = 0;
         std::string_view unit;
-        if (split_number(parts.back(), value, unit) && !unit.empty() &&
+        if (split_number(parts.back(), value, unit, option) && !unit.empty() &&
             !unit_scale(unit, last_scale))
             usage_error(option, {"unknown length unit '", unit, "' (use m, cm, mm)"});
     }
@@ -118,13 +140,13 @@ std::vector<double> parse_lengths_m(std::string_view text, std::string_view opti
     for (const std::string_view part : parts) {
         double value = 0;
         std::string_view unit;
-        if (!split_number(part, value, unit))
+        if (!split_number(part, value, unit, option))
             usage_error(option, {"'", text, "' is not ", expected});
         double scale = last_scale;
         if (!unit.empty() && !unit_scale(unit, scale))
             usage_error(option, {"unknown length unit '", unit, "' (use m, cm, mm)"});
         if (scale == 0) usage_error(option, {"'", text, "' has no unit; write e.g. ", text, "m"});
-        out.push_back(value * scale);
+        out.push_back(checked_length(value * scale, part, option));
     }
     return out;
 }
@@ -154,6 +176,45 @@ bool stderr_is_terminal() {
     return ::isatty(STDERR_FILENO) == 1;
 }
 
+namespace {
+
+// CLI11 transform: refuses a whole number that does not fit T (from_chars says so, or a minus
+// sign before an unsigned one); passes everything else on unchanged.
+template <typename T>
+std::function<std::string(std::string)> fits(const std::string& option) {
+    return [option](std::string text) {
+        std::string_view digits = trim(text);
+        if (digits.starts_with('+')) digits.remove_prefix(1);
+        T value{};
+        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        const bool negative_unsigned =
+            std::is_unsigned_v<T> && digits.starts_with('-') &&
+            digits.find_first_not_of("-0123456789") == std::string_view::npos &&
+            digits.find_first_not_of("-0") != std::string_view::npos;
+        if (ec == std::errc::result_out_of_range || negative_unsigned)
+            throw Error(ErrorCode::kInvalidParameter,
+                        cat({option, ": ", trim(text), " is out of range (a whole number from ",
+                             std::to_string(std::numeric_limits<T>::min()), " to ",
+                             std::to_string(std::numeric_limits<T>::max()), ")"}));
+        return text;
+    };
+}
+
+}  // namespace
+
+void add_seed_option(CLI::App& cmd, std::uint64_t& seed, const std::string& description) {
+    cmd.add_option("--seed", seed, description)
+        ->capture_default_str()
+        ->transform(fits<std::uint64_t>("--seed"), "", "");
+}
+
+void add_count_option(CLI::App& cmd, const std::string& name, long long& count,
+                      const std::string& description) {
+    cmd.add_option(name, count, description)
+        ->capture_default_str()
+        ->transform(fits<long long>(name), "", "");
+}
+
 void add_threads_option(CLI::App& cmd, int& threads, const std::string& description) {
     cmd.add_option("--threads", threads, description)
         ->capture_default_str()
@@ -165,7 +226,12 @@ void add_threads_option(CLI::App& cmd, int& threads, const std::string& descript
                 const bool too_many =
                     ec == std::errc::result_out_of_range ||
                     (ec == std::errc() && end == text.data() + text.size() && n > most);
-                if (!too_many || text.starts_with('-')) return text;
+                // Negative counts are refused here, once for every command (0 = all cores).
+                if (text.starts_with('-') &&
+                    ((ec == std::errc() && n < 0) || ec == std::errc::result_out_of_range))
+                    throw Error(ErrorCode::kInvalidParameter,
+                                cat({"--threads must be 0 (all cores) or more, got ", text}));
+                if (!too_many) return text;
                 std::fprintf(stderr,
                              "surfgrow: note: --threads %s is more than this machine can use; "
                              "using %d (%d per core)\n",

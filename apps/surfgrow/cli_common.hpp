@@ -1,6 +1,7 @@
 // Parsing and formatting shared by the subcommands: lengths with units, vectors, progress.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +17,13 @@ namespace surfgrow::cli {
 /// The --threads option every subcommand has (0 = all cores, negative refused); a request above
 /// what the machine can use (surfgrow::max_threads()) is clamped with a note on stderr.
 void add_threads_option(CLI::App& cmd, int& threads, const std::string& description);
+
+/// A whole-number option of type T (a seed, a count) whose value must fit T: CLI11 alone saturates
+/// 2^64 to 2^64 - 1 and wraps -1 to 2^64 - 1 for a 64-bit option. Out of range is
+/// Error(kInvalidParameter) naming the option; anything else is left to CLI11's conversion.
+void add_seed_option(CLI::App& cmd, std::uint64_t& seed, const std::string& description);
+void add_count_option(CLI::App& cmd, const std::string& name, long long& count,
+                      const std::string& description);
 
 /// Parses a length with its unit ("12mm", "1.2 cm", "0.012m", "1e-2m") into metres.
 /// A bare number is refused: in a tool that mixes metre and millimetre clouds, a silent

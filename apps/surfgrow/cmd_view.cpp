@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cli_common.hpp"
 #include "commands.hpp"
 #include "result_layers.hpp"
 #include "surfgrow/core/error.hpp"
@@ -116,10 +117,9 @@ void add_view_command(CLI::App& app) {
     cmd->add_option("-o,--out", a->out, "HTML file to write (replaced whole or not at all)")
         ->required();
     cmd->add_option("--cloud", a->cloud, "The cloud the result was grown from: the cloud layer");
-    cmd->add_option(
-           "--max-points", a->max_points,
-           "At most this many cloud points in the page (a fixed subsample beyond; 0: none)")
-        ->capture_default_str();
+    add_count_option(*cmd, "--max-points", a->max_points,
+                     "At most this many cloud points in the page (a fixed subsample beyond; 0: "
+                     "none)");
     cmd->add_flag("-q,--quiet", a->quiet, "No summary line on stdout");
     cmd->callback([a] { run_view(*a); });
 }

@@ -40,8 +40,7 @@ void GrowOptions::add_to(CLI::App& cmd) {
                    "Refine normals over adjacent surfaces within this angle, degrees (0: off)")
         ->capture_default_str();
     cmd.add_flag("--no-attach", no_attach, "Skip the leftover pass (the paper's loop alone)");
-    cmd.add_option("--seed", seed, "Random seed for home points (same seed, same output)")
-        ->capture_default_str();
+    add_seed_option(cmd, seed, "Random seed for home points (same seed, same output)");
     add_threads_option(cmd, threads,
                        "Worker threads, 0 = all cores (output does not depend on it)");
     cmd.add_option("--units", cloud_units, "Length unit of the input cloud: m, cm or mm")
@@ -106,9 +105,6 @@ GrowerConfig GrowOptions::config(const CloudUnits& u) const {
         c.crop.center = vec(crop_center, "--crop-center");
     }
     c.range_band = len(range_band, "--range-band");
-    if (!(pool_angle >= 0 && pool_angle < 90))
-        throw Error(ErrorCode::kInvalidParameter,
-                    "--pool-angle must be between 0 (off) and 90 degrees");
     validate(c);
     return c;
 }

@@ -1,5 +1,6 @@
 #include "scan_job.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -46,8 +47,10 @@ scanner::SceneDescription load_scene(const std::string& name) {
 
 std::vector<scanner::Pose> load_poses(const std::string& poses, const scanner::ScanPath& path) {
     if (!all_digits(poses)) return io::read_poses_file(poses);
-    if (poses.size() > 4) invalid(cat({"--poses ", poses, ": at most 1000 poses"}));
-    return scanner::scan_poses(path, std::stoi(poses));
+    int count = 0;  // "00001" is 1; beyond int is too many (scan_poses checks the rest)
+    if (std::from_chars(poses.data(), poses.data() + poses.size(), count).ec != std::errc())
+        invalid(cat({"--poses ", poses, ": at most 1000 poses"}));
+    return scanner::scan_poses(path, count);
 }
 
 scanner::NoiseModel noise_model(const std::string& name) {
@@ -90,7 +93,7 @@ void ScanSettings::add_to(CLI::App& cmd) {
     cmd.add_option("--poses", poses,
                    "Number of scans along the scene's scan path, or a poses file (text or JSON)")
         ->capture_default_str();
-    cmd.add_option("--seed", seed, "Random seed of the simulated noise")->capture_default_str();
+    add_seed_option(cmd, seed, "Random seed of the simulated noise");
     cmd.add_option("--readings", readings, "Readings per ray, n of eq. (1)")->capture_default_str();
     cmd.add_option("--trim", trim, "Readings trimmed from each end, q of eq. (1); n > 2q")
         ->capture_default_str();
@@ -120,7 +123,7 @@ scanner::FuseOptions fuse_options(int readings, int trim, const std::string& min
     f.min_range_mm = range_mm(min_range, "--min-range");
     f.max_range_mm = range_mm(max_range, "--max-range");
     if (trim < 0) invalid(cat({"--trim must be at least 0, got ", std::to_string(trim)}));
-    if (readings <= 2 * trim)
+    if (std::int64_t{readings} <= 2 * std::int64_t{trim})  // no overflow at --trim 2^30
         invalid(cat({"--trim ", std::to_string(trim), " leaves nothing of ",
                      std::to_string(readings), " readings per ray: n must exceed 2q"}));
     const std::uint16_t lo = f.min_range_mm ? f.min_range_mm : laser.min_range_mm;

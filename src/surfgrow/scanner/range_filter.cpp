@@ -16,7 +16,7 @@ RangeFilter::RangeFilter(int readings_per_ray, int trim_q, std::uint16_t min_ran
     if (q_ < 0)
         throw Error(ErrorCode::kInvalidParameter,
                     cat({"trim q must be >= 0, got ", std::to_string(q_)}));
-    if (n_ <= 2 * q_)
+    if (std::int64_t{n_} <= 2 * std::int64_t{q_})  // --trim 2^30 once overflowed here
         throw Error(ErrorCode::kInvalidParameter,
                     cat({"eq. (1) needs n > 2q readings per ray, got n = ", std::to_string(n_),
                          " and q = ", std::to_string(q_)}));
