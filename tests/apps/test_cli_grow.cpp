@@ -214,10 +214,10 @@ TEST_F(CliGrow, BadInputsGiveDistinctCodesAndNoOutput) {
          ErrorCode::kUsage, ""},
         {"bad units", [](auto&, auto& good) { return q(good) + " --units furlong"; },
          ErrorCode::kUsage, "furlong"},
-        {"absurd extent",
+        {"extent beyond float range",
          [](auto& d, auto&) {
              PointCloud c;
-             c.points = {{-1e30f, 0, 0}, {1e30f, 1, 1}, {0, 0, 0}};
+             c.points = {{-3e38f, 0, 0}, {3e38f, 1, 1}, {0, 0, 0}};
              io::write_cloud(d / "huge.ply", c);
              return q(d / "huge.ply");
          },

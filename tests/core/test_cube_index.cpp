@@ -5,6 +5,7 @@
 #include <random>
 #include <set>
 
+#include "support/test_support.hpp"
 #include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/error.hpp"
 
@@ -185,7 +186,7 @@ TEST(CubeIndex, EmptyAndAllInvalidClouds) {
     EXPECT_EQ(nans.size(), 0u);
 }
 
-TEST(CubeIndex, RejectsBadCubeSizeAndHugeExtent) {
+TEST(CubeIndex, RejectsBadCubeSize) {
     const std::vector<Vec3f> pts = {{0, 0, 0}, {1, 1, 1}};
     for (double bad : {0.0, -1.0, std::nan(""), double(INFINITY)}) {
         try {
@@ -195,10 +196,146 @@ TEST(CubeIndex, RejectsBadCubeSizeAndHugeExtent) {
             EXPECT_EQ(e.code(), ErrorCode::kInvalidParameter);
         }
     }
-    const std::vector<Vec3f> huge = {{-1e30f, 0, 0}, {1e30f, 1e30f, 1e30f}};
+}
+
+// The grid coordinates of sorted point i, from its local coordinates alone (not the keys).
+Vec3d grid_of(const CubeIndex& index, std::uint32_t i) {
+    return (index.local_point(i).cast<double>() / index.cube_size()).array().floor();
+}
+
+// The points of the 27 cubes around every cube, by brute force over all points, against the
+// neighbour table and the column runs; then radius queries of one and of 2.5 cubes.
+void check_against_brute_force(const std::vector<Vec3f>& pts, double mu) {
+    const CubeIndex index(pts, mu);
+    ASSERT_EQ(index.size(), pts.size());
+    std::vector<CubeIndex::Range> table, runs;
+    for (std::size_t c = 0; c < index.cube_count(); ++c) {
+        const Vec3d g = index.grid_coords(c);
+        std::vector<std::uint32_t> expected, from_table, from_runs;
+        for (std::uint32_t i = 0; i < index.size(); ++i) {
+            const Vec3d d = grid_of(index, i) - g;
+            if (d.cwiseAbs().maxCoeff() <= 1) expected.push_back(i);
+            if (i >= index.cube_begin(c) && i < index.cube_end(c)) {
+                ASSERT_EQ(grid_of(index, i), g);
+            }
+        }
+        index.neighbour_table(c, c + 1, table);
+        runs.clear();
+        index.column_ranges(index.cube_coords(c), 1, runs);
+        for (const auto& r : table)
+            for (std::uint32_t i = r.begin; i < r.end; ++i) from_table.push_back(i);
+        for (const auto& r : runs)
+            for (std::uint32_t i = r.begin; i < r.end; ++i) from_runs.push_back(i);
+        std::sort(from_table.begin(), from_table.end());
+        ASSERT_EQ(from_table, expected) << "table, cube " << c;
+        ASSERT_EQ(from_runs, expected) << "runs, cube " << c;  // already in sorted order
+    }
+    for (double radius : {mu, 2.5 * mu})
+        for (std::uint32_t q = 0; q < index.size(); ++q)
+            ASSERT_EQ(via_query(index, q, radius),
+                      brute_force(pts, index, q, static_cast<float>(radius)))
+                << "query of radius " << radius << ", point " << q;
+}
+
+TEST(CubeIndex, AnExtentOf1e7MetresMatchesBruteForce) {
+    // Lattice clusters at the corners and the middle of a 1e7 m cube, 1 m steps (the float
+    // resolution there), 4 m cubes: grid keys would need 3 x 22 bits.
+    std::vector<Vec3f> pts;
+    const double far = 1e7;
+    std::uint64_t seed = 1;
+    for (const Vec3d& base :
+         {Vec3d(0, 0, 0), Vec3d(far, far, far), Vec3d(far, 0, far / 2), Vec3d(0.3 * far, far, 0)})
+        test::lattice_patches(1.0, base, seed++, pts);
+    // Cubes one apart and two apart along each axis beside the first cluster.
+    for (float k : {100.f, 104.f, 112.f, 116.f, 124.f}) {
+        pts.emplace_back(k, -50.f, -50.f);
+        pts.emplace_back(-50.f, k, -50.f);
+        pts.emplace_back(-50.f, -50.f, k);
+    }
+    const CubeIndex index(pts, 4.0);
+    EXPECT_TRUE(index.ranked());
+    EXPECT_LE(index.key_bits().sum(), 63);
+    check_against_brute_force(pts, 4.0);
+}
+
+TEST(CubeIndex, ClustersAMillionMetresApartMatchBruteForce) {
+    // Two lattice clusters of 1/16 m steps (exact floats up to 2^20 m), 1e6 m apart on each
+    // axis, with 0.25 m cubes: grid keys would need 3 x 22 bits.
+    std::vector<Vec3f> pts;
+    test::lattice_patches(1.0 / 16, Vec3d::Zero(), 1, pts);
+    test::lattice_patches(1.0 / 16, Vec3d::Constant(1e6), 2, pts);
+    const double mu = test::mu_for_cube_side(0.25);
+    EXPECT_TRUE(CubeIndex(pts, mu).ranked());
+    check_against_brute_force(pts, mu);
+    // The near cluster alone, packed: the same cubes, points and runs in the same order.
+    const std::vector<Vec3f> near(pts.begin(),
+                                  pts.begin() + static_cast<std::ptrdiff_t>(pts.size() / 2));
+    const CubeIndex both(pts, mu), alone(near, mu);
+    EXPECT_FALSE(alone.ranked());
+    std::vector<CubeIndex::Range> t_both, t_alone;
+    both.neighbour_table(0, alone.cube_count(), t_both);
+    alone.neighbour_table(0, alone.cube_count(), t_alone);
+    for (std::size_t c = 0; c < alone.cube_count(); ++c) {
+        EXPECT_EQ(both.grid_coords(c), alone.grid_coords(c));
+        EXPECT_EQ(both.cube_begin(c), alone.cube_begin(c));
+    }
+    for (std::size_t k = 0; k < t_alone.size(); ++k)
+        if (t_alone[k].begin < t_alone[k].end) {
+            EXPECT_EQ(t_both[k].begin, t_alone[k].begin);
+            EXPECT_EQ(t_both[k].end, t_alone[k].end);
+        }
+}
+
+TEST(CubeIndex, RanksKeepNeighboursAndGaps) {
+    // Cubes g, g + 1, g + 3 and g + 6 along x (ranks 1, 2, 4, 6), made ranked by a far point:
+    // g + 1 and g + 3 must not become neighbours, nor g + 3 and g + 6.
+    std::vector<Vec3f> pts = {
+        {0.5f, 0, 0}, {1.5f, 0, 0}, {3.5f, 0, 0}, {6.5f, 0, 0}, {1e30f, 1e30f, 1e30f}};
+    const CubeIndex index(pts, 1.0);
+    ASSERT_TRUE(index.ranked());
+    ASSERT_EQ(index.cube_count(), 5u);
+    std::vector<CubeIndex::Range> table;
+    index.neighbour_table(0, 4, table);
+    auto neighbours = [&](std::size_t c) {
+        std::vector<std::uint32_t> out;
+        for (std::size_t k = 0; k < 9; ++k)
+            for (std::uint32_t i = table[9 * c + k].begin; i < table[9 * c + k].end; ++i)
+                out.push_back(index.original_indices()[i]);
+        std::sort(out.begin(), out.end());
+        return out;
+    };
+    EXPECT_EQ(neighbours(0), (std::vector<std::uint32_t>{0, 1}));
+    EXPECT_EQ(neighbours(1), (std::vector<std::uint32_t>{0, 1}));
+    EXPECT_EQ(neighbours(2), (std::vector<std::uint32_t>{2}));
+    EXPECT_EQ(neighbours(3), (std::vector<std::uint32_t>{3}));
+    // Queries from empty cubes and of several cubes' reach see through the ranks to the grid.
+    const Vec3d p0 = index.world_point(0);
+    auto near = [&](double dx, double radius) {
+        std::vector<std::uint32_t> out;
+        index.for_each_within(p0 + Vec3d(dx, 0, 0), radius,
+                              [&](std::uint32_t i) { out.push_back(index.original_indices()[i]); });
+        std::sort(out.begin(), out.end());
+        return out;
+    };
+    EXPECT_EQ(near(4.5, 0.6), (std::vector<std::uint32_t>{}));  // in the empty cube g + 4
+    EXPECT_EQ(near(4.5, 1.6), (std::vector<std::uint32_t>{2, 3}));
+    EXPECT_EQ(near(0.0, 3.0), (std::vector<std::uint32_t>{0, 1, 2}));  // reach of 3 cubes
+    EXPECT_EQ(index.grid_coords(3).x() - index.grid_coords(0).x(), 6.0);
+}
+
+TEST(CubeIndex, AnyFiniteExtentWithinFloatRange) {
+    // 1e30 m apart at 12 mm cubes (1e32 cubes): indexed by ranks, each point its own neighbour.
+    const std::vector<Vec3f> huge = {{-1e30f, 0, 0}, {1e30f, 1e30f, 1e30f}, {0, 0, 0}};
+    const CubeIndex index(huge, 0.012);
+    EXPECT_TRUE(index.ranked());
+    EXPECT_EQ(index.cube_count(), 3u);
+    for (std::uint32_t q = 0; q < index.size(); ++q)
+        EXPECT_EQ(via_query(index, q, 0.012), std::vector<std::uint32_t>{q});
+    // Beyond float range the local coordinates cannot be floats: refused, with a way out.
+    const std::vector<Vec3f> beyond = {{-3e38f, 0, 0}, {3e38f, 0, 0}};
     try {
-        const CubeIndex index(huge, 0.012);
-        FAIL() << "indexed a 1e30 extent";
+        const CubeIndex refused(beyond, 0.012);
+        FAIL() << "indexed a 6e38 extent";
     } catch (const Error& e) {
         EXPECT_EQ(e.code(), ErrorCode::kCloudTooLarge);
         EXPECT_NE(std::string(e.what()).find("crop"), std::string::npos);

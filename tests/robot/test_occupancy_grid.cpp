@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "support/test_support.hpp"
+#include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/robot/occupancy_grid.hpp"
@@ -140,6 +141,29 @@ TEST(OccupancyGrid, CloudWithAnOffsetUsesItsLocalFrame) {
     cloud.offset = Vec3d(500000, 6000000, 30);
     GrowerConfig config;
     check_against_brute_force(cloud, config);
+}
+
+TEST(OccupancyGrid, ClustersAMillionMetresApartOnTheGridNotTheRanks) {
+    // Too wide for packed grid keys: the grower's index ranks its cubes, the grid stays a grid.
+    PointCloud cloud;
+    test::lattice_patches(1.0 / 16, Vec3d::Zero(), 1, cloud.points);
+    test::lattice_patches(1.0 / 16, Vec3d::Constant(1e6), 2, cloud.points);
+    GrowerConfig config;
+    config.mu = 0.25;
+    ASSERT_TRUE(CubeIndex(cloud.points, config.mu).ranked());
+    check_against_brute_force(cloud, config);
+    // A far outlier puts the grid's origin 1e30 m from the registered cubes along x (where floats
+    // flatten the clusters, which still grow along y and z): refused, not wrapped.
+    cloud.points.emplace_back(-1e30f, 0.f, 0.f);
+    const GrowResult r = grow_surfaces(cloud, config);
+    ASSERT_GT(r.stats.registered, 0u);
+    try {
+        (void)occupancy_grid(cloud, r, config);
+        ADD_FAILURE() << "a grid of 4e30 cubes";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::kCloudTooLarge);
+        EXPECT_NE(std::string(e.what()).find("2^31 cubes"), std::string::npos) << e.what();
+    }
 }
 
 TEST(OccupancyGrid, EmptyCloudsAndCloudsWithoutRegisteredPoints) {

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "surfgrow/core/cube_index.hpp"
+
 namespace surfgrow::test {
 
 namespace fs = std::filesystem;
@@ -74,6 +76,40 @@ void sample_rect(const Rect& rect, double spacing, double jitter, double sigma,
             if (labels) labels->push_back(label);
         }
     }
+}
+
+void lattice_patches(double step, const Vec3d& base, std::uint64_t seed,
+                     std::vector<Vec3f>& points) {
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<int> noise(-10, 10);
+    auto tilt = [](double u, double v, double ku, double kv) {
+        return std::round(ku * u + kv * v);
+    };
+    for (int patch = 0; patch < 3; ++patch) {
+        for (int a = 0; a < 24; ++a) {
+            for (int b = 0; b < 24; ++b) {
+                const int r = noise(rng);
+                const double n = r == -10 ? -1.0 : r == 10 ? 1.0 : 0.0;
+                const double u = a, v = b;  // lattice coordinates: a floor and two walls
+                Vec3d l(u, v, tilt(u, v, 0.3, 0.2) + n);
+                if (patch == 1) l = Vec3d(u, 30 + tilt(u, v, 0.25, -0.1) + n, v + 10);
+                if (patch == 2) l = Vec3d(30 + tilt(u, v, 0.2, 0.15) + n, u, v + 10);
+                points.push_back((base + step * l).cast<float>());
+            }
+        }
+    }
+}
+
+double mu_for_cube_side(double side) {
+    const std::vector<Vec3f> probe = {Vec3f::Zero()};
+    double mu = side / (1.0 + 1.0 / (1 << 20));
+    for (int k = 0; k < 16; ++k) {
+        const double got = CubeIndex(probe, mu).cube_size();
+        if (got == side) return mu;
+        mu = std::nextafter(mu, got < side ? side : 0.0);
+    }
+    ADD_FAILURE() << "no mu gives a cube side of exactly " << side;
+    return mu;
 }
 
 std::vector<Rect> box_faces(const Vec3d& min, const Vec3d& max) {

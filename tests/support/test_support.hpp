@@ -63,6 +63,16 @@ void sample_rect(const Rect& rect, double spacing, double jitter, double sigma,
                  std::mt19937_64& rng, std::vector<Vec3f>& points,
                  std::vector<int32_t>* labels = nullptr, int32_t label = 0);
 
+/// A cluster of three tilted planar patches (24 x 24 points each, about 60 steps across) on the
+/// integer lattice of `step` at `base`: rounding to the lattice is their noise, plus one step on
+/// one point in ten. Positions are exact floats while base / step + 64 < 2^24, so a cluster moved
+/// by a whole number of steps keeps its exact shape at any distance.
+void lattice_patches(double step, const Vec3d& base, std::uint64_t seed,
+                     std::vector<Vec3f>& points);
+
+/// The mu whose cube side (mu enlarged by one part in 2^20, rounded) is exactly `side`.
+double mu_for_cube_side(double side);
+
 /// An axis-aligned box's outer faces as rectangles (6 faces, ids 0..5).
 std::vector<Rect> box_faces(const Vec3d& min, const Vec3d& max);
 

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -83,41 +84,40 @@ CubeIndex::CubeIndex(std::span<const Vec3f> points, double cube_size,
     // neighbour coordinate is >= 0, whatever the float rounding of the local coordinates.
     origin_ = box.min - Vec3d::Constant(1.5 * cube_size_);
     const Vec3d span = (box.max - origin_) * inv_cube_;
-    for (int a = 0; a < 3; ++a) {
+    bool packed = true;
+    for (int a = 0; a < 3 && packed; ++a) {
         // Highest coordinate is floor(span)+1 for the neighbour above; add 1 more for safety.
         const double top = std::floor(span[a]) + 2;
-        if (!(top < 2147483647.0))
-            throw Error(ErrorCode::kCloudTooLarge,
-                        cat({"the cloud spans ", num(box.size()[a]), " units along ",
-                             std::string(1, "xyz"[a]), ", more than 2^31 cubes of ", num(cube_size),
-                             "; crop the workspace or look for outlier points"}));
-        bits_[a] = std::max(1, static_cast<int>(std::bit_width(static_cast<std::uint64_t>(top))));
+        packed = top < 2147483647.0;
+        if (packed)
+            bits_[a] =
+                std::max(1, static_cast<int>(std::bit_width(static_cast<std::uint64_t>(top))));
     }
-    if (bits_.sum() > 63)
-        throw Error(ErrorCode::kCloudTooLarge,
-                    cat({"the cloud's extent (", num(box.size().x()), " x ", num(box.size().y()),
-                         " x ", num(box.size().z()), ") needs more cubes of ", num(cube_size),
-                         " than a 63-bit key can address; crop the workspace or use a larger mu"}));
-    shift_y_ = bits_.z();
-    shift_x_ = bits_.z() + bits_.y();
-
-    // Keys and input indices of the included finite points, in input order, each chunk written at
-    // its prefix offset. Keys come from the float local coordinates the queries use, so a point's
-    // cube and its distances agree exactly (truncation equals floor: local coordinates are > 0).
     BulkVector<std::uint64_t> keys(count);
     BulkVector<std::uint32_t> index(count);
+    if (!packed || bits_.sum() > 63) {
+        rank_keys(points, include, keys, index);
+    } else {
+        shift_y_ = bits_.z();
+        shift_x_ = bits_.z() + bits_.y();
+        // Keys and input indices of the included finite points, in input order, each chunk
+        // written at its prefix offset. Keys come from the float local coordinates the queries
+        // use, so a point's cube and its distances agree exactly (truncation equals floor: local
+        // coordinates are > 0).
 #pragma omp parallel for num_threads(team) schedule(static, 1)
-    for (std::size_t c = 0; c < chunks; ++c) {
-        std::size_t k = chunk_count[c];
-        for (std::size_t i = n_in * c / chunks; i < n_in * (c + 1) / chunks; ++i) {
-            if (!included(include, i) || !is_finite(points[i])) continue;
-            const Vec3f l = local_of(points[i]);
-            const Eigen::Vector3i coords(static_cast<int>(static_cast<double>(l.x()) * inv_cube_),
-                                         static_cast<int>(static_cast<double>(l.y()) * inv_cube_),
-                                         static_cast<int>(static_cast<double>(l.z()) * inv_cube_));
-            keys[k] = encode(coords);
-            index[k] = static_cast<std::uint32_t>(i);
-            ++k;
+        for (std::size_t c = 0; c < chunks; ++c) {
+            std::size_t k = chunk_count[c];
+            for (std::size_t i = n_in * c / chunks; i < n_in * (c + 1) / chunks; ++i) {
+                if (!included(include, i) || !is_finite(points[i])) continue;
+                const Vec3f l = local_of(points[i]);
+                const Eigen::Vector3i coords(
+                    static_cast<int>(static_cast<double>(l.x()) * inv_cube_),
+                    static_cast<int>(static_cast<double>(l.y()) * inv_cube_),
+                    static_cast<int>(static_cast<double>(l.z()) * inv_cube_));
+                keys[k] = encode(coords);
+                index[k] = static_cast<std::uint32_t>(i);
+                ++k;
+            }
         }
     }
     radix_sort_pairs(keys, index, bits_.sum(), threads);
@@ -176,8 +176,49 @@ std::uint32_t CubeIndex::cube_of(std::uint32_t i, std::uint32_t first, std::uint
     return static_cast<std::uint32_t>(it - cube_start_.begin() - 1);
 }
 
+void CubeIndex::rank_keys(std::span<const Vec3f> points, std::span<const std::uint8_t> include,
+                          BulkVector<std::uint64_t>& keys, BulkVector<std::uint32_t>& index) {
+    // Local coordinates must stay finite floats for the queries' arithmetic.
+    const Vec3d extent = bounds_.max - origin_;
+    if (!(extent.maxCoeff() < double(std::numeric_limits<float>::max())))
+        throw Error(
+            ErrorCode::kCloudTooLarge,
+            cat({"the cloud's extent (", num(bounds_.size().x()), " x ", num(bounds_.size().y()),
+                 " x ", num(bounds_.size().z()),
+                 ") is beyond float range; crop the workspace or look for outlier points"}));
+    std::array<std::vector<double>, 3> grid;
+    for (auto& g : grid) g.resize(keys.size());
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (!included(include, i) || !is_finite(points[i])) continue;
+        const Vec3f l = local_of(points[i]);
+        for (int a = 0; a < 3; ++a)
+            grid[static_cast<std::size_t>(a)][k] =
+                std::floor(static_cast<double>(l[a]) * inv_cube_);
+        index[k] = static_cast<std::uint32_t>(i);
+        ++k;
+    }
+    ranked_ = std::make_shared<const detail::RankedCubes>(
+        std::array<std::span<const double>, 3>{grid[0], grid[1], grid[2]},
+        std::span<std::uint64_t>(keys.data(), keys.size()));
+    bits_ = {ranked_->column_bits, 0, ranked_->z_bits};
+}
+
+Vec3d CubeIndex::grid_coords(std::size_t c) const {
+    const Eigen::Vector3i r = cube_coords(c);
+    if (!ranked_) return r.cast<double>();
+    return {ranked_->axes[0].grid_of(r.x()), ranked_->axes[1].grid_of(r.y()),
+            ranked_->axes[2].grid_of(r.z())};
+}
+
 Eigen::Vector3i CubeIndex::coords_of(const Vec3f& local) const {
     Eigen::Vector3i c;
+    if (ranked_) {
+        for (int a = 0; a < 3; ++a)
+            c[a] = ranked_->axes[static_cast<std::size_t>(a)].rank_of(
+                std::floor(static_cast<double>(local[a]) * inv_cube_));
+        return c;
+    }
     for (int a = 0; a < 3; ++a) {
         const double v = std::floor(static_cast<double>(local[a]) * inv_cube_);
         c[a] = static_cast<int>(std::clamp(v, -1073741824.0, 1073741824.0));
@@ -213,6 +254,10 @@ void CubeIndex::neighbour_table(std::size_t cube_begin, std::size_t cube_end,
     const std::size_t m = cube_end - cube_begin;
     out.assign(9 * m, Range{});
     if (m == 0) return;
+    if (ranked_) {
+        ranked_neighbour_table(cube_begin, cube_end, out);
+        return;
+    }
     const std::size_t nc = cube_keys_.size();
     int k = 0;
     for (int dx = -1; dx <= 1; ++dx) {
@@ -236,6 +281,29 @@ void CubeIndex::neighbour_table(std::size_t cube_begin, std::size_t cube_end,
                 while (a < nc && cube_keys_[a] < lo) ++a;
                 if (b < a) b = a;
                 while (b < nc && cube_keys_[b] <= hi) ++b;
+                out[9 * (c - cube_begin) + static_cast<std::size_t>(k)] = {cube_start_[a],
+                                                                           cube_start_[b]};
+            }
+        }
+    }
+}
+
+void CubeIndex::ranked_neighbour_table(std::size_t cube_begin, std::size_t cube_end,
+                                       std::vector<Range>& out) const {
+    // Ranks keep adjacency, so the neighbour columns are (x +- 1, y +- 1) in ranks; for each
+    // (dx, dy) they and the keys they start at rise with the cube, as in the packed sweep.
+    const detail::RankedCubes& rc = *ranked_;
+    int k = 0;
+    for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -1; dy <= 1; ++dy, ++k) {
+            std::size_t column = 0, a = 0, b = 0;
+            for (std::size_t c = cube_begin; c < cube_end; ++c) {
+                const Eigen::Vector3i r = rc.ranks(cube_keys_[c]);  // ranks >= 1: r - 1 >= 0
+                const std::uint64_t want = rc.column(r.x() + dx, r.y() + dy);
+                column = rc.gallop_column(column, want);
+                if (column == rc.columns.size() || rc.columns[column] != want) continue;
+                a = gallop_to(a, rc.key(column, r.z() - 1), false);
+                b = gallop_to(std::max(a, b), rc.key(column, r.z() + 1), true);
                 out[9 * (c - cube_begin) + static_cast<std::size_t>(k)] = {cube_start_[a],
                                                                            cube_start_[b]};
             }

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "surfgrow/core/detail/bulk_allocator.hpp"
+#include "surfgrow/core/detail/ranked_cubes.hpp"
 #include "surfgrow/core/detail/simd_kernels.hpp"
 #include "surfgrow/core/geometry.hpp"
 
@@ -20,6 +22,11 @@ namespace surfgrow {
 /// (only occupied cubes exist). Cube coordinates are packed into one 64-bit key with x in the
 /// high bits and z in the low bits, so the 3 cubes of a z-column are adjacent in key order and
 /// the 27 cubes around a cube are 9 contiguous runs of the sorted points.
+///
+/// A cloud whose grid coordinates would need more than 63 key bits (or 2^31 cubes on an axis) is
+/// indexed by ranks instead (ranked(), detail::RankedCubes): each axis's occupied coordinates are
+/// ranked with gaps kept, so adjacency is exact, and the key is (x-y column rank, z rank). Key
+/// order and every run are then the same as the grid's; only cube coordinates are ranks.
 ///
 /// Coordinates are stored as float relative to origin(), the low corner of the indexed points'
 /// bounding box less one and a half cubes. The cube side is the requested size enlarged by one part
@@ -35,8 +42,9 @@ class CubeIndex {
     CubeIndex() = default;
 
     /// Indexes every finite point `points[i]` for which `include` is empty or include[i] != 0.
-    /// Throws Error(kInvalidParameter) for a bad cube size, Error(kCloudTooLarge) when the
-    /// extent would need more than 63 key bits or there are 2^31 points or more.
+    /// Any finite extent is indexed. Throws Error(kInvalidParameter) for a bad cube size,
+    /// Error(kCloudTooLarge) for 2^31 points or more, an extent beyond float range, or 2^30
+    /// distinct cube positions on one axis.
     CubeIndex(std::span<const Vec3f> points, double cube_size,
               std::span<const std::uint8_t> include = {}, int threads = 1);
 
@@ -66,7 +74,16 @@ class CubeIndex {
     [[nodiscard]] std::uint64_t cube_key(std::size_t c) const { return cube_keys_[c]; }
     [[nodiscard]] std::uint32_t cube_begin(std::size_t c) const { return cube_start_[c]; }
     [[nodiscard]] std::uint32_t cube_end(std::size_t c) const { return cube_start_[c + 1]; }
-    [[nodiscard]] Eigen::Vector3i cube_coords(std::size_t c) const { return decode(cube_keys_[c]); }
+    /// Whether cube coordinates are ranks (a cloud too wide for packed grid coordinates).
+    [[nodiscard]] bool ranked() const { return ranked_ != nullptr; }
+    /// Cube c's coordinates in the index's frame, for coords_of() and for_each_column_run(): its
+    /// grid coordinates, or its ranks if ranked() (adjacent cubes keep adjacent coordinates).
+    [[nodiscard]] Eigen::Vector3i cube_coords(std::size_t c) const {
+        return ranked_ ? ranked_->ranks(cube_keys_[c]) : decode(cube_keys_[c]);
+    }
+    /// Cube c's grid coordinates: it covers origin() + [g, g + 1) * cube_size() on each axis.
+    /// Exact integers (double: any extent); equal to cube_coords() unless ranked().
+    [[nodiscard]] Vec3d grid_coords(std::size_t c) const;
     /// The cube holding sorted point i (binary search).
     [[nodiscard]] std::uint32_t cube_of(std::uint32_t i) const {
         return cube_of(i, 0, static_cast<std::uint32_t>(cube_count()));
@@ -74,7 +91,8 @@ class CubeIndex {
     /// The same, searching only the cubes [first, last), which must hold point i.
     [[nodiscard]] std::uint32_t cube_of(std::uint32_t i, std::uint32_t first,
                                         std::uint32_t last) const;
-    /// The cube coordinates a local position falls in (may be outside the occupied cubes).
+    /// The cube coordinates a local position falls in (may be outside the occupied cubes; if
+    /// ranked(), an empty rank stands for all the empty coordinates between two occupied ones).
     [[nodiscard]] Eigen::Vector3i coords_of(const Vec3f& local) const;
 
     /// Calls f(run) for the (2*reach+1)^2 z-column runs covering every cube within `reach` cubes
@@ -96,10 +114,19 @@ class CubeIndex {
     template <class F>
     void for_each_within(const Vec3d& q, double radius, F&& f) const;
 
-    /// Number of key bits per axis (x, y, z), for tests and diagnostics.
+    /// Number of key bits per axis (x, y, z), for tests and diagnostics; if ranked(), the column
+    /// rank's bits, 0 and the z rank's bits.
     [[nodiscard]] Eigen::Vector3i key_bits() const { return bits_; }
 
   private:
+    template <class F>
+    void for_each_ranked_column_run(const Eigen::Vector3i& coords, int reach, F&& f) const;
+    /// Keys and input indices of the `count` included finite points, by ranks (sets ranked_).
+    void rank_keys(std::span<const Vec3f> points, std::span<const std::uint8_t> include,
+                   detail::BulkVector<std::uint64_t>& keys,
+                   detail::BulkVector<std::uint32_t>& index);
+    void ranked_neighbour_table(std::size_t cube_begin, std::size_t cube_end,
+                                std::vector<Range>& out) const;
     /// The first cube position >= p whose key is not below `key` (above, if `inclusive`), given
     /// that every position before p is.
     [[nodiscard]] std::size_t gallop_to(std::size_t p, std::uint64_t key, bool inclusive) const;
@@ -131,7 +158,8 @@ class CubeIndex {
     detail::BulkVector<float> x_, y_, z_;
     detail::BulkVector<std::uint32_t> original_;
     std::vector<std::uint64_t> cube_keys_;
-    std::vector<std::uint32_t> cube_start_;  // cube_count() + 1 entries
+    std::vector<std::uint32_t> cube_start_;              // cube_count() + 1 entries
+    std::shared_ptr<const detail::RankedCubes> ranked_;  // null: packed grid keys
 };
 
 template <class F>
@@ -157,6 +185,10 @@ void CubeIndex::for_each_within(const Vec3d& q, double radius, F&& f) const {
 template <class F>
 void CubeIndex::for_each_column_run(const Eigen::Vector3i& coords, int reach, F&& f) const {
     if (reach < 0 || cube_keys_.empty()) return;
+    if (ranked_) {
+        for_each_ranked_column_run(coords, reach, f);
+        return;
+    }
     const auto zmax = static_cast<int>((std::int64_t{1} << bits_.z()) - 1);
     const int zlo = std::max(0, coords.z() - reach);
     const int zhi = std::min(zmax, coords.z() + reach);
@@ -168,6 +200,31 @@ void CubeIndex::for_each_column_run(const Eigen::Vector3i& coords, int reach, F&
             if (!in_key_space({x, y, zlo})) continue;
             const std::size_t first = gallop_to(cursor, encode({x, y, zlo}), false);
             const std::size_t last = gallop_to(first, encode({x, y, zhi}), true);
+            cursor = last;
+            if (first < last) f(Range{cube_start_[first], cube_start_[last]});
+        }
+    }
+}
+
+template <class F>
+void CubeIndex::for_each_ranked_column_run(const Eigen::Vector3i& coords, int reach, F&& f) const {
+    // The occupied grid coordinates within reach on each axis, then their columns in key order:
+    // the same runs as the grid's layout gives.
+    const detail::RankedCubes& rc = *ranked_;
+    const auto [x0, x1] = rc.axes[0].within(coords.x(), reach);
+    const auto [y0, y1] = rc.axes[1].within(coords.y(), reach);
+    const auto [z0, z1] = rc.axes[2].within(coords.z(), reach);
+    if (x0 == x1 || y0 == y1 || z0 == z1) return;
+    const std::int32_t zlo = rc.axes[2].rank[z0], zhi = rc.axes[2].rank[z1 - 1];
+    std::size_t column = 0, cursor = 0;
+    for (std::size_t i = x0; i < x1; ++i) {
+        for (std::size_t j = y0; j < y1; ++j) {
+            const std::uint64_t want = rc.column(rc.axes[0].rank[i], rc.axes[1].rank[j]);
+            column = rc.gallop_column(column, want);
+            if (column == rc.columns.size()) return;
+            if (rc.columns[column] != want) continue;
+            const std::size_t first = gallop_to(cursor, rc.key(column, zlo), false);
+            const std::size_t last = gallop_to(first, rc.key(column, zhi), true);
             cursor = last;
             if (first < last) f(Range{cube_start_[first], cube_start_[last]});
         }

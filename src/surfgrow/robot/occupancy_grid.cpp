@@ -38,7 +38,14 @@ OccupancyGrid::OccupancyGrid(const CubeIndex& index, std::span<const std::int32_
             registered += labels[k] >= 0 ? 1u : 0u;
         }
         if (registered == 0) continue;
-        cells_.push_back(index.cube_coords(c));  // key order is (x, y, z) lexicographic
+        // Grid coordinates (not ranks: cells are places); key order is (x, y, z) lexicographic.
+        const Vec3d g = index.grid_coords(c);
+        if (!(g.cwiseAbs().maxCoeff() < 2147483647.0))
+            throw Error(
+                ErrorCode::kCloudTooLarge,
+                cat({"occupancy grid: the grown points span more than 2^31 cubes of ", num(mu),
+                     " (far outlier points?); crop the workspace or use a larger mu"}));
+        cells_.push_back(g.cast<int>());
         counts_.push_back(registered);
         registered_ += registered;
     }
