@@ -1,11 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
 #include <random>
 
 #include "support/test_support.hpp"
+#include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/plane_fit.hpp"
 #include "surfgrow/core/surface_grower.hpp"
@@ -442,6 +444,60 @@ TEST(SurfaceGrower, AbsurdParametersAreRefusedByName) {
               }),
               "accepted");
     EXPECT_EQ(message([](auto& c) { c.min_pts = kMaxMinPts; }), "accepted");
+}
+
+// Two lattice clusters `apart` on each axis, far from the frame origin (normals face +z by rule,
+// as in a georeferenced survey, wherever the clusters are).
+PointCloud two_clusters(double step, double apart) {
+    PointCloud c;
+    test::lattice_patches(step, Vec3d::Zero(), 1, c.points);
+    test::lattice_patches(step, Vec3d::Constant(apart), 2, c.points);
+    c.offset = Vec3d::Constant(1e9);
+    return c;
+}
+
+// Clusters 1e6 m and 1e7 m apart need more than 63 bits of grid keys (ranked cubes). They grow as
+// the same clusters 100 cubes apart: exactly at the index origin, where every position, cube
+// border and sum is the same float in both clouds (lattice steps of the float resolution at
+// 1e6 and 1e7 m, cubes of whole steps). The far cluster's arithmetic rounds at that resolution
+// (1/16 m, 1 m), so there the same homes grow, with normals within a degree.
+TEST(SurfaceGrower, ClustersFarApartGrowAsWhenNear) {
+    struct Case {
+        double step, side, apart;
+    };
+    for (const Case& k : {Case{1.0 / 16, 0.25, 1e6}, Case{1.0, 4.0, 1e7}}) {
+        SCOPED_TRACE(k.apart);
+        GrowerConfig cfg;
+        cfg.mu = test::mu_for_cube_side(k.side);
+        cfg.threads = 2;
+        const double near_apart = 100 * k.side;
+        const PointCloud far = two_clusters(k.step, k.apart),
+                         near = two_clusters(k.step, near_apart);
+        ASSERT_TRUE(CubeIndex(far.points, cfg.mu).ranked());
+        ASSERT_FALSE(CubeIndex(near.points, cfg.mu).ranked());
+        const GrowResult a = grow_surfaces(far, cfg), b = grow_surfaces(near, cfg);
+        check_invariants(far, cfg, a);
+        const std::size_t half = far.size() / 2;
+        EXPECT_TRUE(std::equal(a.labels.begin(), a.labels.begin() + std::ptrdiff_t(half),
+                               b.labels.begin()));
+        EXPECT_EQ(a.stats.registered, b.stats.registered);
+        ASSERT_EQ(a.surfaces.size(), b.surfaces.size());
+        EXPECT_GE(a.surfaces.size(), 6u);
+        for (std::size_t i = 0; i < a.surfaces.size(); ++i) {
+            const Surface &sa = a.surfaces[i], &sb = b.surfaces[i];
+            const bool second = sa.home.x() > k.apart / 2;
+            EXPECT_EQ(sa.home - Vec3d::Constant(second ? k.apart - near_apart : 0.0), sb.home);
+            EXPECT_LT(axis_angle_between(sa.normal, sb.normal), 1 * kDeg) << i;
+            if (second) continue;
+            EXPECT_EQ(sa.centroid, sb.centroid) << i;
+            EXPECT_EQ(sa.normal, sb.normal) << i;
+            EXPECT_EQ(sa.eigenvalues, sb.eigenvalues) << i;
+            EXPECT_EQ(sa.radius, sb.radius) << i;
+            EXPECT_EQ(sa.neighbours, sb.neighbours) << i;
+            EXPECT_EQ(sa.point_count, sb.point_count) << i;
+            EXPECT_EQ(sa.tolerance, sb.tolerance) << i;
+        }
+    }
 }
 
 // More threads than a machine can use are clamped (100000 once crashed with SIGSEGV), and the
