@@ -146,7 +146,13 @@ void write_coverage_csv(std::ostream& out, const CoveragePlan& plan, const Resul
 }
 
 StoredCoverage read_coverage_json(const std::filesystem::path& file) {
-    const json j = parse_file(file);
+    const FileBytes bytes = FileBytes::read(file);
+    return parse_coverage_json(bytes.view(), file.string());
+}
+
+StoredCoverage parse_coverage_json(std::string_view text, std::string_view source) {
+    const std::filesystem::path file(source);
+    const json j = parse_text(text, file);
     StoredCoverage r;
     CoveragePlan& plan = r.plan;
     std::string where = "the header";
@@ -229,7 +235,12 @@ StoredCoverage read_coverage_json(const std::filesystem::path& file) {
 std::vector<CoverageGoal> read_coverage_csv(const std::filesystem::path& file,
                                             const Vec3d& offset) {
     const FileBytes bytes = FileBytes::read(file);
-    std::string_view text = bytes.view();
+    return parse_coverage_csv(bytes.view(), file.string(), offset);
+}
+
+std::vector<CoverageGoal> parse_coverage_csv(std::string_view text, std::string_view source,
+                                             const Vec3d& offset) {
+    const std::filesystem::path file(source);
     std::vector<CoverageGoal> goals;
     std::size_t line_no = 0;
     auto next_line = [&](std::string_view& line) {

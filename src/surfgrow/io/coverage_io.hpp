@@ -33,11 +33,17 @@ struct StoredCoverage {
 /// the goal (another format, a vector that is not 3 finite numbers, a non-unit axis or
 /// quaternion, counts that do not match).
 [[nodiscard]] StoredCoverage read_coverage_json(const std::filesystem::path& file);
+/// The same for coverage.json held in memory; `source` names it in messages.
+[[nodiscard]] StoredCoverage parse_coverage_json(std::string_view text, std::string_view source);
 
 /// Reads coverage.csv: goals in file order, positions relative to `offset`. Throws
 /// Error(kCannotOpen) or Error(kMalformedInput) naming the file and line (a wrong header, a row
 /// with the wrong number of fields, a field that is not a number, a non-unit axis).
 [[nodiscard]] std::vector<CoverageGoal> read_coverage_csv(const std::filesystem::path& file,
                                                           const Vec3d& offset = Vec3d::Zero());
+/// The same for coverage.csv held in memory; `source` names it in messages.
+[[nodiscard]] std::vector<CoverageGoal> parse_coverage_csv(std::string_view text,
+                                                           std::string_view source,
+                                                           const Vec3d& offset = Vec3d::Zero());
 
 }  // namespace surfgrow::io

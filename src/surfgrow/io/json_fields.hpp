@@ -3,7 +3,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -12,6 +11,7 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/geometry.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/io/scan_files_common.hpp"
 
 namespace surfgrow::io::json_fields {
 
@@ -28,15 +28,12 @@ inline ordered_json vec_json(const Vec3d& v) {
     throw Error(ErrorCode::kMalformedInput, cat({file.string(), ": ", what}));
 }
 
-/// The parsed file. Throws Error(kCannotOpen) when it cannot be opened (or is a folder) and
-/// Error(kMalformedInput) when it is not JSON.
-inline json parse_file(const std::filesystem::path& file) {
-    std::error_code ec;
-    std::ifstream in(file, std::ios::binary);
-    if (!in || std::filesystem::is_directory(file, ec))
-        throw Error(ErrorCode::kCannotOpen, cat({"cannot open ", file.string()}));
+/// JSON `text` parsed; `file` names it in messages. Throws Error(kMalformedInput) when it is not
+/// JSON or nests deeper than detail::check_json_depth allows (no memory blow-up on "[[[[...").
+inline json parse_text(std::string_view text, const std::filesystem::path& file) {
+    detail::check_json_depth(text, file.string());
     try {
-        return json::parse(in);
+        return json::parse(text);
     } catch (const json::exception& e) {
         malformed(file, cat({"not valid JSON: ", e.what()}));
     }

@@ -120,7 +120,13 @@ void write_planes_json(std::ostream& out, const BoundPlanes& planes, const Resul
 }
 
 StoredPlanes read_planes_json(const std::filesystem::path& file) {
-    const json j = parse_file(file);
+    const FileBytes bytes = FileBytes::read(file);
+    return parse_planes_json(bytes.view(), file.string());
+}
+
+StoredPlanes parse_planes_json(std::string_view text, std::string_view source) {
+    const std::filesystem::path file(source);
+    const json j = parse_text(text, file);
     StoredPlanes r;
     BoundPlanes& bp = r.planes;
     std::string where = "the header";
@@ -305,7 +311,11 @@ void write_planes_obj(std::ostream& out, const BoundPlanes& planes, const Result
 
 PlaneMesh read_planes_ply(const std::filesystem::path& file, const Vec3d& offset) {
     const FileBytes bytes = FileBytes::read(file);
-    const std::string_view all = bytes.view();
+    return parse_planes_ply(bytes.view(), file.string(), offset);
+}
+
+PlaneMesh parse_planes_ply(std::string_view all, std::string_view source, const Vec3d& offset) {
+    const std::filesystem::path file(source);
     const std::size_t end = all.find("end_header\n");
     if (all.substr(0, 4) != "ply\n" || end == std::string_view::npos)
         malformed(file, "not a PLY file (no \"ply\" line or no end_header)");

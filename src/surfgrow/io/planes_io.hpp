@@ -28,6 +28,8 @@ struct StoredPlanes {
 /// planes file: not JSON, another format, a non-unit normal or axis, a ring of fewer than 3
 /// vertices, a vertex that is not two finite numbers, a patch id listed twice.
 [[nodiscard]] StoredPlanes read_planes_json(const std::filesystem::path& file);
+/// The same for planes.json held in memory; `source` names it in messages.
+[[nodiscard]] StoredPlanes parse_planes_json(std::string_view text, std::string_view source);
 
 /// planes.ply: the triangulated polygons as a binary little-endian mesh: vertices (x, y, z;
 /// double when meta.offset is non-zero), their plane's normal (nx, ny, nz) and plane id; faces
@@ -47,5 +49,8 @@ void write_planes_obj(std::ostream& out, const BoundPlanes& planes, const Result
 /// problem (another layout, truncated, an index out of range).
 [[nodiscard]] PlaneMesh read_planes_ply(const std::filesystem::path& file,
                                         const Vec3d& offset = Vec3d::Zero());
+/// The same for planes.ply held in memory; `source` names it in messages.
+[[nodiscard]] PlaneMesh parse_planes_ply(std::string_view bytes, std::string_view source,
+                                         const Vec3d& offset = Vec3d::Zero());
 
 }  // namespace surfgrow::io

@@ -168,10 +168,14 @@ std::vector<Pose> parse_poses_json(std::string_view text, std::string_view name)
 
 std::vector<Pose> read_poses_file(const std::filesystem::path& path) {
     const std::string text = detail::read_file_capped(path, kMaxPosesFileBytes, "a poses file");
+    return parse_poses_file(text, path.string());
+}
+
+std::vector<Pose> parse_poses_file(std::string_view text, std::string_view name) {
     const std::size_t first = text.find_first_not_of(" \t\r\n");
-    if (first != std::string::npos && (text[first] == '{' || text[first] == '['))
-        return parse_poses_json(text, path.string());
-    return parse_poses_text(text, path.string());
+    if (first != std::string_view::npos && (text[first] == '{' || text[first] == '['))
+        return parse_poses_json(text, name);
+    return parse_poses_text(text, name);
 }
 
 std::string poses_to_text(const std::vector<Pose>& poses) {

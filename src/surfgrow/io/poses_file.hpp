@@ -29,6 +29,9 @@ namespace surfgrow::io {
 /// Reads a poses file: JSON if its first non-blank character is '{' or '[', text otherwise.
 /// Throws Error(kCannotOpen) if it cannot be read.
 [[nodiscard]] std::vector<scanner::Pose> read_poses_file(const std::filesystem::path& path);
+/// The same for a poses file held in memory; `name` prefixes errors.
+[[nodiscard]] std::vector<scanner::Pose> parse_poses_file(std::string_view text,
+                                                          std::string_view name);
 
 /// One line of 16 numbers per pose (shortest round-trip form), after a comment header.
 [[nodiscard]] std::string poses_to_text(const std::vector<scanner::Pose>& poses);

@@ -11,6 +11,8 @@
 
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/io/file_bytes.hpp"
+#include "surfgrow/io/scan_files_common.hpp"
 
 namespace surfgrow::io {
 
@@ -336,13 +338,20 @@ void write_labels_txt(std::ostream& out, std::span<const std::int32_t> labels) {
 }
 
 StoredResult read_result_json(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in)
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec))
         throw Error(ErrorCode::kCannotOpen,
                     cat({"cannot open ", file.string(), " (is this a surfgrow result?)"}));
+    const FileBytes bytes = FileBytes::read(file);
+    return parse_result_json(bytes.view(), file.string());
+}
+
+StoredResult parse_result_json(std::string_view text, std::string_view source) {
+    const std::filesystem::path file(source);
+    detail::check_json_depth(text, source);
     nlohmann::json j;
     try {
-        j = nlohmann::json::parse(in);
+        j = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         malformed(file, cat({"not valid JSON: ", e.what()}));
     }
@@ -429,11 +438,12 @@ StoredResult read_result_json(const std::filesystem::path& file) {
 }
 
 std::vector<std::int32_t> read_labels_txt(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw Error(ErrorCode::kCannotOpen, cat({"cannot open ", file.string()}));
-    std::stringstream ss;
-    ss << in.rdbuf();
-    const std::string text = ss.str();
+    const FileBytes bytes = FileBytes::read(file);
+    return parse_labels_txt(bytes.view(), file.string());
+}
+
+std::vector<std::int32_t> parse_labels_txt(std::string_view text, std::string_view source) {
+    const std::filesystem::path file(source);
     std::vector<std::int32_t> labels;
     const char* p = text.data();
     const char* end = p + text.size();

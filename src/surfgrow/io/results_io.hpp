@@ -6,6 +6,7 @@
 #include <ostream>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "surfgrow/core/grow_result.hpp"
@@ -62,9 +63,14 @@ struct StoredResult {
 /// Reads surfaces.json. Throws Error(kCannotOpen) if missing, Error(kMalformedInput) if it is not
 /// a surfgrow result.
 [[nodiscard]] StoredResult read_result_json(const std::filesystem::path& file);
+/// The same for surfaces.json held in memory; `source` names it in messages.
+[[nodiscard]] StoredResult parse_result_json(std::string_view text, std::string_view source);
 
 /// Reads labels.txt. Throws Error(kCannotOpen / kMalformedInput).
 [[nodiscard]] std::vector<std::int32_t> read_labels_txt(const std::filesystem::path& file);
+/// The same for labels.txt held in memory; `source` names it in messages.
+[[nodiscard]] std::vector<std::int32_t> parse_labels_txt(std::string_view text,
+                                                         std::string_view source);
 
 /// surfaces.json's "parameters": every parameter of `config`, defaults resolved.
 [[nodiscard]] nlohmann::json parameters_json(const GrowerConfig& config);

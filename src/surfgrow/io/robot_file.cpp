@@ -9,6 +9,7 @@
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/file_bytes.hpp"
 #include "surfgrow/io/io_error.hpp"
+#include "surfgrow/io/scan_files_common.hpp"
 
 namespace surfgrow::io {
 
@@ -61,6 +62,7 @@ struct LinkParser {
 
 RobotModel parse_robot_json(std::string_view text, std::string_view source,
                             const RobotFrame& frame) {
+    detail::check_json_depth(text, source);
     Json j;
     try {
         j = Json::parse(text.begin(), text.end());
