@@ -26,6 +26,18 @@ if(SURFGROW_SANITIZE)
     add_link_options(-fsanitize=address,undefined)
 endif()
 
+# libFuzzer: every unit carries the fuzzer's coverage hooks and ASan+UBSan (UB aborts, so the
+# fuzzer sees it); only fuzz/'s targets link the fuzzer's main (-fsanitize=fuzzer).
+if(SURFGROW_BUILD_FUZZERS)
+    if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+        message(FATAL_ERROR "SURFGROW_BUILD_FUZZERS needs clang (libFuzzer): "
+                            "-DCMAKE_CXX_COMPILER=clang++ (scripts/fuzz.sh does this)")
+    endif()
+    add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer
+                        -fno-sanitize-recover=undefined)
+    add_link_options(-fsanitize=address,undefined)
+endif()
+
 # Apply warnings (and -Werror in CI) to one of our own targets.
 function(surfgrow_target_options target)
     target_compile_options(${target} PRIVATE ${SURFGROW_WARNINGS})

@@ -3,6 +3,7 @@
 #   scripts/install-deps.sh build        compiler, CMake, libraries (enough to build and run)
 #   scripts/install-deps.sh test         + GoogleTest, Google Benchmark, test-only tools
 #   scripts/install-deps.sh package      + qemu-user, clang and its OpenMP, for the portability check (scripts/check-package.sh)
+#   scripts/install-deps.sh fuzz         + clang with libFuzzer and its OpenMP, for scripts/fuzz.sh (docs/fuzzing.md)
 #   scripts/install-deps.sh python       + pybind11, Python headers, pytest, Open3D, tqdm (the Python module, docs/python.md)
 #   scripts/install-deps.sh cross        + the aarch64 cross compiler and Debian's arm64 libraries (scripts/check-aarch64.sh)
 #   scripts/install-deps.sh peers        + PCL, CGAL, Open3D for bench/peers (optional)
@@ -12,6 +13,7 @@ declare -A group=(
     [build]="cmake make g++ pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev liblzf-dev libpng-dev libfreetype-dev libfontconfig-dev fonts-dejavu-core liboctomap-dev python3 python3-matplotlib python3-numpy"
     [test]="libgtest-dev libgmock-dev libbenchmark-dev clang-format strace"
     [package]="qemu-user clang libomp-dev"
+    [fuzz]="clang libclang-rt-14-dev libomp-dev"
     [python]="pybind11-dev python3-dev python3-numpy python3-setuptools python3-wheel python3-pip python3-venv python3-pytest python3-tqdm python3-open3d"
     [peers]="libpcl-dev libcgal-dev libtbb-dev python3-open3d libgmp-dev libmpfr-dev"
     [cross]="g++-aarch64-linux-gnu qemu-user libc6-dev:arm64 libgomp1:arm64 liblzf-dev:arm64 libpng-dev:arm64 libfreetype-dev:arm64 libfontconfig-dev:arm64 liboctomap1.9:arm64 libgtest-dev:arm64 libgmock-dev:arm64"
@@ -25,7 +27,7 @@ group[test]+=" chromium"
 
 wanted=()
 for g in "${@:-build}"; do
-    [[ -n "${group[$g]+x}" ]] || { echo "install-deps: unknown group '$g' (build, test, python, package, peers, cross)" >&2; exit 2; }
+    [[ -n "${group[$g]+x}" ]] || { echo "install-deps: unknown group '$g' (build, test, python, package, fuzz, peers, cross)" >&2; exit 2; }
     read -r -a pk <<<"${group[$g]}"
     wanted+=("${pk[@]}")
 done

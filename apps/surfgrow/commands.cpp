@@ -1,5 +1,7 @@
 #include "commands.hpp"
 
+#include "surfgrow/version.hpp"
+
 namespace surfgrow::cli {
 
 void add_grow_command(CLI::App& app);
@@ -32,6 +34,15 @@ void add_all_commands(CLI::App& app) {
     add_demo_command(app);
     add_sweep_command(app);
     add_study_command(app);
+}
+
+std::unique_ptr<CLI::App> make_app() {
+    auto app = std::make_unique<CLI::App>(
+        "surfgrow: laser-scan point clouds to oriented surface patches (Paul, Liu, Kirchner)");
+    app->require_subcommand(1);
+    app->set_version_flag("--version", "surfgrow " SURFGROW_VERSION);
+    add_all_commands(*app);
+    return app;
 }
 
 }  // namespace surfgrow::cli

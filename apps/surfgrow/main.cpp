@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <memory>
 #include <new>
 
 #if defined(__linux__) && defined(__GLIBC__)
@@ -13,7 +14,6 @@
 #include "commands.hpp"
 #include "exit_status.hpp"
 #include "surfgrow/core/error.hpp"
-#include "surfgrow/version.hpp"
 
 namespace {
 
@@ -37,11 +37,8 @@ int main(int argc, char** argv) {
     using namespace surfgrow;
     using namespace surfgrow::cli;
     restart_with_huge_pages(argv);
-    CLI::App app{
-        "surfgrow: laser-scan point clouds to oriented surface patches (Paul, Liu, Kirchner)"};
-    app.require_subcommand(1);
-    app.set_version_flag("--version", "surfgrow " SURFGROW_VERSION);
-    add_all_commands(app);
+    const std::unique_ptr<CLI::App> made = make_app();
+    CLI::App& app = *made;
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {

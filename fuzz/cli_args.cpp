@@ -1,0 +1,71 @@
+// Fuzzes the command line: the input, split at NUL bytes, is argv after "surfgrow", parsed by the
+// real CLI11 definition (cli::make_app, as main() uses). The top app's parse-complete callback,
+// which CLI11 runs after every option has been parsed, checked and converted and before any
+// subcommand's callback, throws: so the parse is the real one, but no command does its work
+// (reading clouds, writing results). (Replacing the subcommands' callbacks instead would free the
+// option variables their lambdas own.) Each argument then also goes through the value syntax the
+// commands use in their callbacks: lengths with units, vectors, units.
+//
+// Expected answers: CLI::Error (a parse error, --help, --version) and surfgrow::Error. Anything
+// else escaping (std::out_of_range from a conversion, ...) is a finding.
+#include <CLI/CLI.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "surfgrow/core/error.hpp"
+
+namespace {
+
+struct Parsed {};  // thrown once the command line is parsed, before the command runs
+
+template <class F>
+void expect_error_or_value(F&& f) {
+    try {
+        (void)f();
+    } catch (const surfgrow::Error&) {
+    }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    using namespace surfgrow::cli;
+    const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+    std::vector<std::string> args{"surfgrow"};
+    std::size_t start = 0;
+    while (start <= bytes.size() && size > 0) {
+        const std::size_t nul = bytes.find('\0', start);
+        args.emplace_back(bytes.substr(start, nul - start));
+        if (nul == std::string_view::npos) break;
+        start = nul + 1;
+    }
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+
+    const std::unique_ptr<CLI::App> app = make_app();
+    app->parse_complete_callback([] { throw Parsed{}; });
+    try {
+        app->parse(static_cast<int>(args.size()), argv.data());
+    } catch (const Parsed&) {
+    } catch (const CLI::Error&) {
+    } catch (const surfgrow::Error&) {
+    }
+
+    for (std::size_t i = 1; i < args.size(); ++i) {
+        const std::string_view a = args[i];
+        expect_error_or_value([&] { return parse_length_m(a, "--fuzz"); });
+        expect_error_or_value([&] { return unit_to_metres(a, "--fuzz"); });
+        expect_error_or_value([&] { return parse_vec3(a, "--fuzz"); });
+        expect_error_or_value([&] { return parse_vec3_length_m(a, "--fuzz"); });
+        expect_error_or_value([&] { return parse_lengths_m(a, "--fuzz", 6); });
+    }
+    return 0;
+}
