@@ -213,6 +213,17 @@ TEST(PlanesIo, MeshRoundTripsThroughPlyAndOpensAsACloud) {
     EXPECT_EQ(code_of([&] { (void)read_planes_ply(dir / "index.ply"); }, &message),
               ErrorCode::kMalformedInput);
     EXPECT_NE(message.find("refers to vertex"), std::string::npos) << message;
+    // Found by fuzz/planes_ply: a vertex's plane id of 2^31 - 1 made the reader allocate 48 GiB
+    // for plane normals; an id beyond what the file could hold is refused.
+    std::string bad_plane = bytes;
+    const bool wide = bytes.find("property double x") != std::string::npos;
+    const std::size_t vertex_plane =  // the first vertex's plane: after x y z and nx ny nz
+        bytes.find("end_header\n") + 11 + (wide ? 24 : 12) + 12;
+    for (int k = 0; k < 4; ++k) bad_plane[vertex_plane + k] = k == 3 ? '\x7f' : '\xff';
+    test::write_bytes(dir / "plane.ply", bad_plane);
+    EXPECT_EQ(code_of([&] { (void)read_planes_ply(dir / "plane.ply"); }, &message),
+              ErrorCode::kMalformedInput);
+    EXPECT_NE(message.find("more planes than the file could hold"), std::string::npos) << message;
     PointCloud c;
     c.points = {{0, 0, 0}, {1, 0, 0}};
     write_cloud(dir / "cloud.ply", c);
@@ -305,6 +316,9 @@ TEST(CoverageIo, BadRobotFilesAreRefusedWithTheLineNamed) {
         {"axis", header + "0,0,0,0,0,0,0,0,1,0,0,1,0,0,-2,1,0,0,0,5,0,0\n", "tool axis"},
         {"quaternion", header + "0,0,0,0,0,0,0,0,1,0,0,1,0,0,-1,2,0,0,0,5,0,0\n", "quaternion"},
         {"negative plane", header + "0,-1,0,0,0,0,0,0,1,0,0,1,0,0,-1,1,0,0,0,5,0,0\n", "whole"},
+        // Found by fuzz/coverage_csv: an id beyond 32 bits was converted to uint32 (UB).
+        {"huge plane", header + "0,1e20,0,0,0,0,0,0,1,0,0,1,0,0,-1,1,0,0,0,5,0,0\n", "2^32 - 1"},
+        {"huge row", header + "0,0,4294967296,0,0,0,0,0,1,0,0,1,0,0,-1,1,0,0,0,5,0,0\n", "whole"},
     };
     for (const Case& c : cases) {
         test::write_bytes(dir / "coverage.csv", c.text);

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "surfgrow/core/error.hpp"
@@ -277,8 +278,10 @@ std::vector<CoverageGoal> parse_coverage_csv(std::string_view text, std::string_
         }
         if (n != kFields)
             bad(cat({std::to_string(n), " fields where ", std::to_string(kFields), " are needed"}));
-        if (f[1] < 0 || f[2] < 0 || f[1] != std::floor(f[1]) || f[2] != std::floor(f[2]))
-            bad("plane and row must be whole numbers >= 0");
+        constexpr double kMaxId = std::numeric_limits<std::uint32_t>::max();
+        if (f[1] < 0 || f[2] < 0 || f[1] != std::floor(f[1]) || f[2] != std::floor(f[2]) ||
+            f[1] > kMaxId || f[2] > kMaxId)
+            bad("plane and row must be whole numbers from 0 to 2^32 - 1");
         CoverageGoal g;
         g.plane = static_cast<std::uint32_t>(f[1]);
         g.row = static_cast<std::uint32_t>(f[2]);

@@ -388,6 +388,11 @@ PlaneMesh parse_planes_ply(std::string_view all, std::string_view source, const 
         take(plane);
         if (!v.allFinite() || plane < 0)
             malformed(file, cat({"vertex ", std::to_string(i), " is not finite or has no plane"}));
+        // The plane normals are indexed by id: an id beyond the file's size would make the
+        // reader allocate for planes no file of this size can describe.
+        if (static_cast<std::uint64_t>(plane) >= all.size())
+            malformed(file, cat({"vertex ", std::to_string(i), " has plane ", std::to_string(plane),
+                                 ", more planes than the file could hold"}));
         mesh.vertices.push_back(v - offset);
         mesh.vertex_plane.push_back(static_cast<std::uint32_t>(plane));
         if (plane >= planes) {
