@@ -53,7 +53,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::unique_ptr<CLI::App> app = make_app();
     app->parse_complete_callback([] { throw Parsed{}; });
     try {
-        app->parse(static_cast<int>(args.size()), argv.data());
+        parse_command_line(*app, static_cast<int>(args.size()), argv.data());
     } catch (const Parsed&) {
     } catch (const CLI::Error&) {
     } catch (const surfgrow::Error&) {

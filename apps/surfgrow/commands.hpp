@@ -13,4 +13,9 @@ void add_all_commands(CLI::App& app);
 /// subcommand (add_all_commands). fuzz/cli_args.cpp parses with the same definition.
 [[nodiscard]] std::unique_ptr<CLI::App> make_app();
 
+/// app.parse(argc, argv), refusing an empty argument first (CLI::ValidationError, exit 2): CLI11
+/// 2.1 takes "" for the name of a nameless option group (grow's output groups) and then loops
+/// forever on an unknown short flag (`grow x "" -ht`, found by fuzz/cli_args).
+void parse_command_line(CLI::App& app, int argc, const char* const* argv);
+
 }  // namespace surfgrow::cli

@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
     const std::unique_ptr<CLI::App> made = make_app();
     CLI::App& app = *made;
     try {
-        app.parse(argc, argv);
+        parse_command_line(app, argc, argv);
     } catch (const CLI::Success& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {

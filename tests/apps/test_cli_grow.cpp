@@ -340,5 +340,15 @@ TEST(Cli, VersionAndHelp) {
     EXPECT_EQ(surfgrow("").code, static_cast<int>(ErrorCode::kUsage));
 }
 
+// Found by fuzz/cli_args: CLI11 2.1 took "" for grow's nameless option groups and then looped
+// for ever on -ht. An empty argument is now a usage error (under `timeout`, should it hang again).
+TEST(CliArgs, EmptyArgumentIsAUsageError) {
+    for (const char* args : {"grow x '' -ht", "grow x ''", "grow '' x", "planes out --cloud ''"}) {
+        const CliRun r = test::run_surfgrow(args, "timeout 60 ");
+        EXPECT_EQ(r.code, static_cast<int>(ErrorCode::kUsage)) << args << ": " << r.out;
+        EXPECT_NE(r.out.find("is empty"), std::string::npos) << args << ": " << r.out;
+    }
+}
+
 }  // namespace
 }  // namespace surfgrow
