@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/scanner/laser_spec.hpp"
@@ -74,6 +75,12 @@ TEST(LaserSpec, UnknownPresetAndBadValuesAreInvalidParameters) {
     s = LaserSpec{};
     s.last_detect_step = 900;
     EXPECT_THROW(s.validate(), Error);
+    // Found by fuzz/raw_scan: a front step far from the sweep overflowed int (UBSan).
+    for (int front : {std::numeric_limits<int>::min(), std::numeric_limits<int>::max()}) {
+        s = LaserSpec{};
+        s.front_step = front;
+        EXPECT_THROW(s.validate(), Error) << front;
+    }
     TiltSpec t;
     t.positions = 0;
     EXPECT_THROW(t.validate(), Error);

@@ -31,8 +31,9 @@ void LaserSpec::validate() const {
         invalid(
             cat({"laser detection steps ", inum(first_detect_step), "..", inum(last_detect_step),
                  " must lie inside the sweep ", inum(first_step), "..", inum(last_step)}));
-    const double lo = (first_step - front_step) * step_deg;
-    const double hi = (last_step - front_step) * step_deg;
+    // In double: front_step is any int in a file (a raw scan's header), and int - int overflows.
+    const double lo = (static_cast<double>(first_step) - front_step) * step_deg;
+    const double hi = (static_cast<double>(last_step) - front_step) * step_deg;
     if (lo < -180.0 || hi > 180.0)
         invalid(cat({"laser sweep must lie within -180..180 deg, got ", num(lo), "..", num(hi)}));
     if (min_range_mm < 1 || max_range_mm <= min_range_mm || max_range_mm == 65535)
