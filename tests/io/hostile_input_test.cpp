@@ -1,6 +1,8 @@
 // Bad input never crashes and never makes the readers allocate from the file's claims:
 // truncated files, corrupted bytes, and headers with absurd counts.
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <new>
 #include <random>
 #include <string>
@@ -99,6 +101,19 @@ std::vector<Sample> valid_samples() {
     return out;
 }
 
+// With SURFGROW_FUZZ_SEEDS=<folder> set, every sample is also written to
+// <folder>/read_cloud_<ply|pcd|text>/<name>: the seeds of the fuzzers (docs/fuzzing.md).
+void dump_seed(CloudFormat format, const std::string& name, const std::string& bytes) {
+    const char* root = std::getenv("SURFGROW_FUZZ_SEEDS");
+    if (root == nullptr) return;
+    const char* target = format == CloudFormat::kPly   ? "read_cloud_ply"
+                         : format == CloudFormat::kPcd ? "read_cloud_pcd"
+                                                       : "read_cloud_text";
+    const std::filesystem::path dir = std::filesystem::path(root) / target;
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / name, std::ios::binary) << bytes;
+}
+
 // Offset of the first byte of the last value in an ASCII file: a prefix that reaches it holds
 // every value (the last one possibly cut short, which no reader can notice).
 std::size_t last_value_start(const std::string& bytes) {
@@ -112,6 +127,7 @@ std::size_t last_value_start(const std::string& bytes) {
 TEST(HostileInput, EveryTruncationIsMalformedUnlessTheFileIsComplete) {
     for (const Sample& s : valid_samples()) {
         SCOPED_TRACE(s.name);
+        dump_seed(s.format, s.name, s.bytes);
         const PointCloud full = io::read_cloud(s.bytes, s.format, s.name);
         const std::size_t complete = s.ascii ? last_value_start(s.bytes) + 1 : s.bytes.size();
         for (std::size_t len = 0; len < s.bytes.size(); ++len) {
@@ -224,6 +240,7 @@ TEST(HostileInput, AbsurdHeadersFailWithoutLargeAllocations) {
     };
     for (const auto& c : cases) {
         SCOPED_TRACE(c.name);
+        dump_seed(c.format, "absurd_" + c.name, c.bytes);
         g_largest_allocation = 0;
         expect_error([&] { (void)io::read_cloud(c.bytes, c.format, c.name); },
                      ErrorCode::kMalformedInput, c.name);
