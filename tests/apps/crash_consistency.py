@@ -215,7 +215,7 @@ def cases():
              writes=False),
         Case("scan2cloud", "one.ply", [scan + ["-o", "truth"],
                                        ["scan2cloud", "truth/scan-000.sgraw", "-o", "one.ply"]],
-             ["scan2cloud", "truth/scan-000.sgraw", "--min-range", "0.5m", "-o", "one.ply"]),
+             ["scan2cloud", "truth/scan-000.sgraw", "--max-range", "1m", "-o", "one.ply"]),
         Case("sweep", "sweep", [["sweep", "../box.xyz", "--mu", "30mm:60mm", "--steps", "2",
                                  "--min-pts", "10", "-q", "-o", "sweep"]],
              ["sweep", "../box.xyz", "--mu", "30mm:60mm", "--steps", "2", "--min-pts", "5,10",
