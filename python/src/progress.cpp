@@ -38,7 +38,8 @@ void ProgressHook::operator()(std::string_view stage, double fraction) {
         if (!error_) return;
     }
     // Throwing out of an OpenMP region would end the process: there, wait for the next report.
-    if (!omp_in_parallel()) throw Interrupted{};
+    // omp_get_level, not omp_in_parallel: a one-thread region is inactive but still a region.
+    if (omp_get_level() == 0) throw Interrupted{};
 }
 
 std::function<void(std::string_view, double)> ProgressHook::function() {
