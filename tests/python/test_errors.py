@@ -55,8 +55,16 @@ def test_usage_errors(tmp_path):
         surfgrow.write_cloud(tmp_path / "x.las", np.zeros((3, 3)))
 
 
-def test_cloud_too_large():
+def test_any_extent_within_float_range_is_indexed():
+    # 10^11 cubes on an axis: the index ranks the cubes instead of refusing; nothing registers.
     pts = np.array([[0, 0, 0], [1e7, 0, 0], [0, 1e7, 0]], np.float64)
-    with pytest.raises(surfgrow.Error) as e:
+    with pytest.warns(RuntimeWarning, match="registered"):
+        result = surfgrow.grow(pts, mu=1e-4)
+    assert (result.labels == -1).all()
+
+
+def test_extent_beyond_float_range_is_cloud_too_large():
+    pts = np.array([[-3e38, 0, 0], [3e38, 0, 0], [0, 0, 0]], np.float64)
+    with pytest.raises(surfgrow.CloudTooLargeError, match="float range") as e:
         surfgrow.grow(pts, mu=1e-4)
-    assert e.value.code in (3, 8)
+    assert e.value.code == 8
