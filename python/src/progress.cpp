@@ -1,7 +1,5 @@
 #include "progress.hpp"
 
-#include <omp.h>
-
 #include "errors.hpp"
 
 namespace surfgrow::python {
@@ -37,9 +35,9 @@ void ProgressHook::operator()(std::string_view stage, double fraction) {
         }
         if (!error_) return;
     }
-    // Throwing out of an OpenMP region would end the process: there, wait for the next report.
-    // omp_get_level, not omp_in_parallel: a one-thread region is inactive but still a region.
-    if (omp_get_level() == 0) throw Interrupted{};
+    // The grower catches what its progress callback throws inside its parallel loop and stops
+    // after the slabs in flight (GrowerConfig::progress); every other report is outside one.
+    throw Interrupted{};
 }
 
 std::function<void(std::string_view, double)> ProgressHook::function() {

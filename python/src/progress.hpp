@@ -14,8 +14,8 @@ namespace surfgrow::python {
 /// The library's progress callback for one call made with the GIL released. Each report takes
 /// the GIL, checks for a pending signal (Ctrl-C) and calls the user's callback (stage, fraction).
 /// A KeyboardInterrupt, or an exception from the callback, is kept and the run is stopped by
-/// throwing Interrupted at the next report outside a parallel region (the library's stage
-/// boundaries), so nothing is left half-built; rethrow() then raises it in Python.
+/// throwing Interrupted from the report (the grower stops after the slabs in flight; nothing is
+/// left half-built); rethrow() then raises it in Python.
 class ProgressHook {
   public:
     /// `callback`: None, or a callable taking (stage: str, fraction: float).

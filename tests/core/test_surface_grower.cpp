@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -112,6 +114,29 @@ TEST(SurfaceGrower, NoiseFreePlaneIsRegisteredWithExactNormals) {
         EXPECT_LT(axis_angle_between(surf.normal, Vec3d::UnitZ()), 1e-3);
     // The paper's data reduction: many points per surface.
     EXPECT_GT(r.stats.data_reduction(), 10.0);
+}
+
+TEST(SurfaceGrower, AProgressCallbackThatThrowsStopsTheRunEvenInsideTheSlabLoop) {
+    // "grow" is reported from inside the slab loop's parallel region (an inactive one with one
+    // thread): the exception must come out of grow(), soon, not end the process.
+    const Scene s =
+        sample_scene({{{0, 0, 0.5}, Vec3d::UnitX(), Vec3d::UnitY(), 1.0, 1.0}}, 0.004, 0.0005, 1);
+    for (const int threads : {1, 2}) {
+        SCOPED_TRACE(threads);
+        GrowerConfig cfg = config_mm();
+        cfg.threads = threads;
+        int grow_reports = 0, after = 0;
+        cfg.progress = [&](std::string_view stage, double) {
+            if (stage != "grow") return;
+            if (++grow_reports > 1) ++after;
+            throw std::runtime_error("stop");
+        };
+        EXPECT_THROW((void)grow_surfaces(s.cloud, cfg), std::runtime_error);
+        EXPECT_EQ(after, 0);  // thread 0 reports nothing once it has thrown
+        cfg.progress = nullptr;
+        EXPECT_EQ(grow_surfaces(s.cloud, cfg).stats.registered,
+                  grow_surfaces(s.cloud, config_mm()).stats.registered);
+    }
 }
 
 TEST(SurfaceGrower, BoxSceneMeetsThePapersRegistrationWithAccurateNormals) {

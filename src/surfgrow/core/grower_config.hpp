@@ -83,6 +83,7 @@ struct GrowerConfig {
     std::optional<Vec3d> viewpoint;
     double range_band = 1.0;  ///< width of the range bands in the statistics
     /// Called with a stage name and the fraction done, from one thread at a time. May be empty.
+    /// It may throw to stop the run: the grower stops after the slabs in flight and throws it on.
     std::function<void(std::string_view stage, double fraction)> progress;
 
     /// The fixed tolerance per mu of radius: plane_tolerance, or mu; 0 when tied to the noise.

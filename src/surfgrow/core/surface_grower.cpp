@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <functional>
 #include <initializer_list>
 #include <limits>
@@ -821,16 +822,29 @@ BulkVector<GrownSurface> grow_slabs(const GrowContext& ctx, std::span<const Slab
     std::vector<GrownSpan> grown(slabs.size());
     std::vector<SlabCounters> counters(slabs.size());
     std::atomic<std::size_t> done{0};
-    for (int colour = 0; colour < 2; ++colour) {
+    // A progress callback may throw to stop the run (Ctrl-C in Python): nothing may leave an
+    // OpenMP region, so the first exception is kept, the slabs not yet begun are skipped, and it
+    // is thrown again after the region. Only thread 0 reports, so only it writes `stopped_by`.
+    std::atomic<bool> stop{false};
+    std::exception_ptr stopped_by;
+    for (int colour = 0; colour < 2 && !stopped_by; ++colour) {
         for_each_slab_of_colour(ctx.index, slabs, colour, threads, [&](std::size_t s, int t) {
+            if (stop.load(std::memory_order_relaxed)) return;
             Scratch& sc = scratch[static_cast<std::size_t>(t)];
             const std::size_t begin = sc.grown.size();
             grow_slab(ctx, slabs[s], s, sc, sc.grown, counters[s]);
             grown[s] = {static_cast<std::size_t>(t), begin, sc.grown.size()};
             const std::size_t d = ++done;
-            if (t == 0) report("grow", double(d) / double(slabs.size()));
+            if (t != 0) return;
+            try {
+                report("grow", double(d) / double(slabs.size()));
+            } catch (...) {
+                stopped_by = std::current_exception();
+                stop.store(true, std::memory_order_relaxed);
+            }
         });
     }
+    if (stopped_by) std::rethrow_exception(stopped_by);
     // Surface ids follow the home points' sorted order: slab order, then home order within a slab.
     // Each slab's surfaces go straight to their final place, slabs in parallel.
     std::vector<std::size_t> first(slabs.size() + 1, 0);
