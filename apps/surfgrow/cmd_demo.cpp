@@ -54,8 +54,10 @@ void add_demo_command(CLI::App& app) {
         const std::filesystem::path out(args->out);
         const ScanData data = run_scan(scan);
         write_scan_outputs(out / "scan", data, scan);
+        OutputChoice outputs;
+        outputs.close_up = true;  // corner.png beside the overview, as the paper's Fig. 6
         const GrowRun run =
-            grow_and_write(data.cloud, config, out, OutputChoice{}, units, "scan/cloud.ply",
+            grow_and_write(data.cloud, config, out, outputs, units, "scan/cloud.ply",
                            data.simulate_seconds + data.fuse_seconds);
         const GrowResult& grown = run.result.grow;
         eval::EvalReport report =

@@ -11,6 +11,7 @@
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/atomic_output.hpp"
 #include "surfgrow/io/result_folder.hpp"
+#include "surfgrow/render/group_colors.hpp"
 #include "surfgrow/render/scene_builder.hpp"
 #include "surfgrow/view/subsample.hpp"
 #include "surfgrow/view/viewer_html.hpp"
@@ -81,11 +82,19 @@ void run_view(const ViewArgs& a) {
                                                                  : render::BackFaces::kGhost;
     render::Scene scene = render::scene_from_surfaces(r.surfaces);
     if (layers.planes) {
+        // The PNG's colours: faces that meet differ; each polygon in its disks' colour.
         const std::vector<std::int32_t> group = plane_of_surface(*layers.planes, r.surfaces.size());
-        for (const std::int32_t p : group) s.disk_plane_colors.push_back(render::id_color(p));
+        s.disk_plane_colors = render::group_colors(r.surfaces, group);
         s.planes.emplace();
-        for (const PlaneOutline& p : *layers.planes)
-            s.planes->push_back({p.id, p.boundary, p.holes, render::id_color(p.id)});
+        for (const PlaneOutline& p : *layers.planes) {
+            render::Rgb color = render::kUnassignedGrey;
+            for (const std::int32_t m : p.surfaces)
+                if (m >= 0 && static_cast<std::size_t>(m) < group.size() && group[m] == p.id) {
+                    color = s.disk_plane_colors[static_cast<std::size_t>(m)];
+                    break;
+                }
+            s.planes->push_back({p.id, p.boundary, p.holes, color});
+        }
     }
     if (layers.coverage) s.path = layers.coverage->goals;
     if (!a.cloud.empty() && a.max_points > 0)

@@ -7,6 +7,7 @@
 #include "cli_common.hpp"
 #include "coverage_options.hpp"
 #include "planes_options.hpp"
+#include "surfaces_picture.hpp"
 #include "surfgrow/core/stopwatch.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/atomic_output.hpp"
@@ -18,19 +19,6 @@
 #include "surfgrow/version.hpp"
 
 namespace surfgrow::cli {
-
-render::Image render_surfaces(const GrowResult& result, const std::string& units, int threads) {
-    render::Scene scene = render::scene_from_surfaces(result.surfaces);
-    scene.legend = render::legend_line(result.stats.points_in, result.stats.surfaces,
-                                       result.stats.registered_fraction());
-    render::RenderOptions options;
-    options.units = units;
-    options.threads = threads;
-    // Normals face the sensor unless no viewpoint was known; then show both sides of every disk.
-    if (result.stats.orientation == OrientationSource::kUp)
-        options.back_faces = render::BackFaces::kShow;
-    return render::render_scene(scene, options);
-}
 
 std::string summary_line(const GrowStats& s) {
     char buf[256];
@@ -143,9 +131,19 @@ GrowRun grow_and_write(const PointCloud& cloud, const PipelineConfig& config,
     io::OutputTransaction tx(out_dir, io::is_result_file);
     const io::OccupancySummary occupancy =
         io::stage_result(tx, cloud, pipeline.config(), r, meta, outputs.files);
-    if (outputs.picture) {
-        const render::Image image = render_surfaces(r.grow, units.name, grow.threads);
-        tx.add("surfaces.png", [&](std::ostream& o) { render::write_png(image, o); });
+    if (outputs.picture || outputs.close_up) {
+        std::span<const std::int32_t> planes;
+        if (r.planes) planes = r.planes->plane_of_patch;
+        SurfacesPicture picture =
+            surfaces_picture(r.grow.surfaces, r.grow.stats, planes, units.name, grow.threads);
+        if (outputs.picture) {
+            const render::Image image = render::render_scene(picture.scene, picture.options);
+            tx.add("surfaces.png", [&](std::ostream& o) { render::write_png(image, o); });
+        }
+        if (outputs.close_up && make_corner_close_up(picture, planes)) {
+            const render::Image image = render::render_scene(picture.scene, picture.options);
+            tx.add("corner.png", [&](std::ostream& o) { render::write_png(image, o); });
+        }
     }
     run.write_seconds = watch.seconds();
 

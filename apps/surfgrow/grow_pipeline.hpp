@@ -18,7 +18,8 @@ namespace surfgrow::cli {
 /// picture.
 struct OutputChoice {
     io::ResultFiles files;
-    bool picture = true;  ///< surfaces.png (iso view)
+    bool picture = true;    ///< surfaces.png: the overview (iso view, coloured by bound plane)
+    bool close_up = false;  ///< corner.png: a corner close-up with normals (the demo's)
 };
 
 /// One line per robot output that was written, for --stats: planes, coverage, occupancy.
@@ -46,9 +47,6 @@ struct GrowRun {
 GrowRun grow_and_write(const PointCloud& cloud, const PipelineConfig& config,
                        const std::filesystem::path& out_dir, const OutputChoice& outputs,
                        const CloudUnits& units, const std::string& input_name, double read_seconds);
-
-/// The default picture of a result: every surface as a disk, iso view, legend line.
-render::Image render_surfaces(const GrowResult& result, const std::string& units, int threads);
 
 /// The one-line summary: "276480 points -> 5231 surfaces, 99.4% registered, 52.9x reduction, 0.041
 /// s".

@@ -9,13 +9,16 @@
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <random>
 
 #include "cli_support.hpp"
 #include "support/test_support.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/io/cloud_io.hpp"
 #include "surfgrow/io/planes_io.hpp"
 #include "surfgrow/planes/bound_planes.hpp"
+#include "surfgrow/render/group_colors.hpp"
 #include "surfgrow/render/png.hpp"
 #include "surfgrow/render/renderer.hpp"
 #include "surfgrow/render/scene_builder.hpp"
@@ -133,6 +136,7 @@ TEST_F(CliRender, PicturesMatchTheLibraryWithTheSameOptions) {
     options.height = 480;
     options.view = render::View::kSide;
     options.units = "m";
+    options.normal_min_radius = 0;  // --normals: every normal, whatever its disk's size
     EXPECT_EQ(test::read_bytes(png), render::encode_png(render::render_scene(s, options)));
 }
 
@@ -146,10 +150,15 @@ TEST_F(CliRender, NormalsAreRedLines) {
             }
         return n;
     };
-    const render::Image plain = read_picture(render("plain.png", "--size 640x480"));
+    const render::Image plain = read_picture(render("plain.png", "--size 640x480 --no-normals"));
     const render::Image normals = read_picture(render("normals.png", "--size 640x480 --normals"));
     EXPECT_EQ(red_pixels(plain), 0u);
     EXPECT_GT(red_pixels(normals), 200u);
+    // By default only where the disks are big enough on screen (8 px): in a large picture, not
+    // in a small one.
+    EXPECT_GT(red_pixels(read_picture(render("auto-big.png", "--size 1600x1200"))), 200u);
+    EXPECT_EQ(red_pixels(read_picture(render("auto-small.png", "--size 240x180"))),
+              red_pixels(read_picture(render("none-small.png", "--size 240x180 --no-normals"))));
 }
 
 TEST_F(CliRender, PointsComeFromTheCloudWithTheirSurfaceColours) {
@@ -197,8 +206,9 @@ TEST_F(CliRender, ColourByPlaneUsesTheBoundPlanesColours) {
                                                  " --size 640x480 --color-by ", colour_by}));
         EXPECT_EQ(r.code, 0) << r.out;
         const render::Image image = read_picture(png);
-        const double h3 = hue_saturation(render::id_color(3)).first;
-        const double h8 = hue_saturation(render::id_color(8)).first;
+        // Two bound planes that meet: the palette's first two colours, the larger plane first.
+        const double h3 = hue_saturation(render::kGroupPalette[0]).first;
+        const double h8 = hue_saturation(render::kGroupPalette[1]).first;
         std::size_t coloured = 0, of_planes = 0;
         for (int y = 0; y < image.height() * 9 / 10; ++y)
             for (int x = 0; x < image.width(); ++x) {
@@ -228,8 +238,8 @@ TEST_F(CliRender, NormalsFacingUpShowEveryDiskSolid) {
     ASSERT_NE(json.find(from), std::string::npos);
     json.replace(json.find(from), from.size(), "\"orientation\": \"up\"");
     test::write_bytes(out / "surfaces.json", json);
-    const test::CliRun r = run_surfgrow(
-        cat({"render ", quoted(out), " -o ", quoted(tmp / "up.png"), " --size 640x480"}));
+    const test::CliRun r = run_surfgrow(cat(
+        {"render ", quoted(out), " -o ", quoted(tmp / "up.png"), " --size 640x480 --no-normals"}));
     ASSERT_EQ(r.code, 0) << r.out;
     render::RenderOptions options;
     options.width = 640;
@@ -298,6 +308,143 @@ TEST_F(CliRender, BadInputsGiveTheirCodeAndWriteNoPicture) {
         run_surfgrow(cat({"render ", out, " -o ", quoted(tmp / "old.png"), " --size 8x8"})).code,
         0);
     EXPECT_EQ(test::read_bytes(tmp / "old.png"), "old");
+}
+
+// What a user sees first (issue 19): measured on the pictures' pixels above the legend band.
+struct PictureStats {
+    double ink = 0;             // share of the pixels that are not background
+    double palette = 0;         // share of the coloured pixels in a hue of kGroupPalette
+    std::vector<double> shade;  // per palette colour holding >= 5 % of them: median brightness
+                                // relative to the colour itself (its shading)
+    std::size_t colours = 0;    // palette colours holding >= 1 % of the coloured pixels
+};
+
+PictureStats picture_stats(const render::Image& image) {
+    PictureStats st;
+    std::size_t ink = 0, coloured = 0, in_palette = 0, all = 0;
+    std::vector<std::vector<double>> shade(render::kGroupPalette.size());
+    for (int y = 0; y < image.height() * 9 / 10; ++y)
+        for (int x = 0; x < image.width(); ++x) {
+            ++all;
+            const render::Rgb c = image.at(x, y);
+            ink += std::min({c.r, c.g, c.b}) < 245;
+            const auto [h, sat] = hue_saturation(c);
+            if (sat < 0.25) continue;
+            ++coloured;
+            for (std::size_t k = 0; k < render::kGroupPalette.size(); ++k) {
+                const render::Rgb p = render::kGroupPalette[k];
+                if (hue_distance(h, hue_saturation(p).first) >= 0.02) continue;
+                ++in_palette;
+                shade[k].push_back(double(std::max({c.r, c.g, c.b})) / std::max({p.r, p.g, p.b}));
+                break;
+            }
+        }
+    st.ink = double(ink) / double(all);
+    st.palette = double(in_palette) / double(std::max<std::size_t>(coloured, 1));
+    for (auto& v : shade) {
+        st.colours += double(v.size()) >= 0.01 * double(coloured);
+        if (double(v.size()) >= 0.05 * double(coloured)) {
+            std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+            st.shade.push_back(v[v.size() / 2]);
+        }
+    }
+    return st;
+}
+
+void print_stats(const char* what, const PictureStats& st) {
+    std::printf("%s: ink %.3f, palette %.3f, %zu colours\n", what, st.ink, st.palette, st.colours);
+}
+
+TEST(Pictures, TheDemoShowsTheStructureByPlaneAndACornerWithNormals) {
+    test::TempDir tmp;
+    const fs::path out = tmp / "demo";
+    const test::CliRun r = run_surfgrow(cat({"demo --poses 1 -q -o ", quoted(out)}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    // The overview: the channel fills the picture (framed with the floor strips far below it,
+    // it covered 14 %), in the bound planes' colours (coloured per surface: 36 % of the coloured
+    // pixels in the palette's hues; the ghosted near walls blend hues).
+    const PictureStats overview = picture_stats(read_picture(out / "surfaces.png"));
+    print_stats("overview", overview);
+    EXPECT_GT(overview.ink, 0.35);
+    EXPECT_GT(overview.palette, 0.55);
+    EXPECT_GE(overview.colours, 5u);
+    const fs::path all = tmp / "all.png";
+    ASSERT_EQ(run_surfgrow(cat({"render ", quoted(out), " --frame all -q -o ", quoted(all)})).code,
+              0);
+    EXPECT_LT(picture_stats(read_picture(all)).ink, 0.8 * overview.ink);
+    // The close-up: three faces meeting, each in its colour, shaded differently by its
+    // orientation, with the normals drawn.
+    const render::Image corner = read_picture(out / "corner.png");
+    const PictureStats close = picture_stats(corner);
+    print_stats("corner", close);
+    EXPECT_GT(close.palette, 0.75);
+    ASSERT_GE(close.shade.size(), 3u);
+    EXPECT_GT(*std::max_element(close.shade.begin(), close.shade.end()) -
+                  *std::min_element(close.shade.begin(), close.shade.end()),
+              0.15);
+    std::size_t red = 0;
+    for (int y = 0; y < corner.height() * 9 / 10; ++y)
+        for (int x = 0; x < corner.width(); ++x) {
+            const render::Rgb c = corner.at(x, y);
+            red += c.r > 150 && c.r > 2 * c.g && c.r > 2 * c.b;
+        }
+    EXPECT_GT(red, 2000u);
+    // `render --close-up` draws the same picture.
+    const fs::path again = tmp / "corner.png";
+    ASSERT_EQ(run_surfgrow(cat({"render ", quoted(out), " --close-up -q -o ", quoted(again)})).code,
+              0);
+    EXPECT_EQ(test::read_bytes(again), test::read_bytes(out / "corner.png"));
+}
+
+TEST(Pictures, StrayPatchesFarFromTheStructureDoNotShrinkIt) {
+    // A 1 m plate on a 5 mm grid, and 40 m away a small patch with 1 % of the points.
+    test::TempDir tmp;
+    PointCloud cloud;
+    std::mt19937_64 rng(5);
+    std::normal_distribution<float> noise(0.0f, 0.0005f);
+    for (int i = 0; i <= 200; ++i)
+        for (int j = 0; j <= 200; ++j)
+            cloud.points.emplace_back(0.005f * float(i), 0.005f * float(j), 1.0f + noise(rng));
+    for (int i = 0; i <= 20; ++i)
+        for (int j = 0; j <= 20; ++j)
+            cloud.points.emplace_back(40.0f + 0.005f * float(i), 0.005f * float(j), noise(rng));
+    io::write_cloud(tmp / "stray.ply", cloud);
+    const test::CliRun r = run_surfgrow(cat({"grow ", quoted(tmp / "stray.ply"), " -q -o ",
+                                             quoted(tmp / "out"), " --viewpoint 0.5,0.5,3m"}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    const PictureStats bulk = picture_stats(read_picture(tmp / "out" / "surfaces.png"));
+    ASSERT_EQ(run_surfgrow(cat({"render ", quoted(tmp / "out"), " --frame all -q -o ",
+                                quoted(tmp / "all.png")}))
+                  .code,
+              0);
+    const PictureStats all = picture_stats(read_picture(tmp / "all.png"));
+    print_stats("bulk", bulk);
+    print_stats("all", all);
+    EXPECT_GT(bulk.ink, 0.3);
+    EXPECT_LT(all.ink, 0.05);
+}
+
+TEST(Pictures, RealTiltedStepsShowTheirFacesInColours) {
+    const auto real = test::real_data_dir();
+    if (!real) GTEST_SKIP() << "../shared/data/real is not here";
+    const fs::path steps = *real / "plane_seg" / "tilted-steps.pcd";
+    if (!fs::exists(steps)) GTEST_SKIP() << steps << " is not here";
+    test::TempDir tmp;
+    const test::CliRun r = run_surfgrow(cat({"grow ", quoted(steps),
+                                             " -q --no-occupancy --no-octomap "
+                                             "--no-collision --no-coverage -o ",
+                                             quoted(tmp / "out")}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    const PictureStats bulk = picture_stats(read_picture(tmp / "out" / "surfaces.png"));
+    ASSERT_EQ(run_surfgrow(cat({"render ", quoted(tmp / "out"), " --frame all -q -o ",
+                                quoted(tmp / "all.png")}))
+                  .code,
+              0);
+    const PictureStats all = picture_stats(read_picture(tmp / "all.png"));
+    print_stats("steps", bulk);
+    EXPECT_GE(bulk.ink, all.ink);
+    EXPECT_GT(bulk.palette, 0.75);
+    EXPECT_GE(bulk.colours, 5u);  // faces in several colours, not one
 }
 
 }  // namespace

@@ -2,6 +2,9 @@
 // browser tests, in tests/view, open it in Chromium).
 #include <gtest/gtest.h>
 
+#include <set>
+#include <tuple>
+
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -13,6 +16,7 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/planes_io.hpp"
+#include "surfgrow/render/group_colors.hpp"
 #include "surfgrow/render/scene_builder.hpp"
 #include "surfgrow/view/assets.hpp"
 #include "surfgrow/view/base64.hpp"
@@ -198,13 +202,27 @@ TEST_F(CliView, OptionalLayersComeFromPlanesAndCoverageFiles) {
     EXPECT_EQ(array_of<float>(page, layers["planes"]["vertices"]).size(), 6u * 4u * 3u);
     ASSERT_TRUE(layers["path"].is_object());
     EXPECT_EQ(layers["path"]["count"], goals);
-    // Colouring by plane: every disk of a plane gets the plane's colour.
+    // Colouring by plane: every disk of a plane gets the plane's colour, the PNG's
+    // (group_colors: the box's faces meet, so the six differ), and so does its polygon.
     ASSERT_TRUE(layers["surfaces"]["plane_color"].is_string());
     const auto plane_rgb = array_of<std::uint8_t>(page, layers["surfaces"]["plane_color"]);
     const io::StoredPlanes planes = io::read_planes_json(box.out / "planes.json");
-    for (std::size_t id = 0; id < planes.planes.planes.size(); ++id)
-        for (const std::uint32_t s : planes.planes.planes[id].patches)
-            EXPECT_EQ(plane_rgb[3 * s], render::id_color(static_cast<std::int32_t>(id)).r);
+    const std::vector<render::Rgb> colors =
+        render::group_colors(box.result.surfaces, planes.planes.plane_of_patch);
+    std::set<std::tuple<int, int, int>> distinct;
+    for (std::size_t id = 0; id < planes.planes.planes.size(); ++id) {
+        ASSERT_FALSE(planes.planes.planes[id].patches.empty());
+        const render::Rgb c = colors[planes.planes.planes[id].patches[0]];
+        distinct.insert({c.r, c.g, c.b});
+        for (const std::uint32_t s : planes.planes.planes[id].patches) {
+            EXPECT_EQ(plane_rgb[3 * s], c.r);
+            EXPECT_EQ(plane_rgb[3 * s + 1], c.g);
+            EXPECT_EQ(plane_rgb[3 * s + 2], c.b);
+        }
+        const json& colour = layers["planes"]["polygons"][id]["color"];
+        EXPECT_EQ(colour, json({c.r, c.g, c.b})) << colour;
+    }
+    EXPECT_EQ(distinct.size(), 6u);
 }
 
 TEST_F(CliView, SameBytesEveryRun) {

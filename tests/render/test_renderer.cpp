@@ -156,6 +156,7 @@ TEST(Renderer, NormalsAreDrawnAlongTheNormal) {
     const Scene scene = scene_from_surfaces({s}, style);
     RenderOptions o = bare();  // the disk is edge-on, its normal points up the screen
     o.line_width = 3;
+    o.normal_min_radius = 0;  // every normal: they are framed too
     const Camera cam = frame_scene(scene, o);
     const Image img = render_scene(scene, o);
     EXPECT_EQ(pixel_at(img, cam, {0, 0, 1.0}), kNormalRed);

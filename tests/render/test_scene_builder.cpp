@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/render/group_colors.hpp"
 #include "surfgrow/render/scene_builder.hpp"
 
 using namespace surfgrow;
@@ -45,11 +46,12 @@ TEST(SceneBuilder, ColoursBySurfaceOrGroup) {
 
     SurfaceStyle style;
     style.groups = {7, 7, -1, 3};
+    // In group_colors' palette: the larger group first, the other the least used colour.
     const Scene by_group = scene_from_surfaces(s, style);
-    EXPECT_EQ(by_group.disks[0].color, id_color(7));
-    EXPECT_EQ(by_group.disks[1].color, id_color(7));
+    EXPECT_EQ(by_group.disks[0].color, kGroupPalette[0]);
+    EXPECT_EQ(by_group.disks[1].color, kGroupPalette[0]);
     EXPECT_EQ(by_group.disks[2].color, kUnassignedGrey);
-    EXPECT_EQ(by_group.disks[3].color, id_color(3));
+    EXPECT_EQ(by_group.disks[3].color, kGroupPalette[1]);
 
     style.groups = {1, 2};
     try {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
@@ -14,6 +15,8 @@
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/planes_io.hpp"
 #include "surfgrow/render/png.hpp"
+#include "surfgrow/render/renderer.hpp"
+#include "surfgrow/view/viewer_html.hpp"
 
 namespace surfgrow {
 namespace {
@@ -197,9 +200,13 @@ TEST_F(ViewInBrowser, SurfacesDrawWhereTheyProjectAndSwitchOff) {
 TEST_F(ViewInBrowser, BoundPlanesAndCoveragePathDraw) {
     open("layers.html");
     expect_only_the_file_was_requested();
-    EXPECT_EQ(browser_->evaluate("surfgrowView.visible('planes') && surfgrowView.visible('path')"),
+    // The first view: surfaces coloured by bound plane, the planes on, the path off (it would
+    // hide the surfaces).
+    EXPECT_EQ(browser_->evaluate("surfgrowView.visible('planes') && !surfgrowView.visible('path')"),
               true);
+    EXPECT_EQ(browser_->evaluate("document.getElementById('sg-colour-1').checked"), true);
     click("sg-layer-surfaces");  // leave the planes and the path alone in the picture
+    click("sg-layer-path");
 
     const io::StoredPlanes planes = io::read_planes_json(dir_->path() / "layered" / "planes.json");
     std::vector<Pixel> plane_pixels, goal_pixels;
@@ -233,12 +240,62 @@ TEST_F(ViewInBrowser, BoundPlanesAndCoveragePathDraw) {
     for (const Pixel& p : goal_pixels) EXPECT_EQ(none.at(p.x, p.y), kWhite);
     for (const Pixel& p : plane_pixels) EXPECT_EQ(none.at(p.x, p.y), kWhite);
 
-    // Colouring by bound plane switches the disks' colours.
+    // Colouring per surface switches the disks' colours.
     click("sg-layer-surfaces");
-    const render::Image by_surface = screenshot();
-    click("sg-colour-1");
-    EXPECT_NE(non_white(by_surface), 0u);
-    EXPECT_FALSE(screenshot() == by_surface);
+    const render::Image by_plane = screenshot();
+    click("sg-colour-0");
+    EXPECT_NE(non_white(by_plane), 0u);
+    EXPECT_FALSE(screenshot() == by_plane);
+}
+
+// The first view is framed like the PNG: on the structure, not on a stray patch 30 m away.
+TEST_F(ViewInBrowser, FirstViewIsFramedOnTheStructureLikeThePicture) {
+    view::ViewerScene scene;
+    scene.title = "framing";
+    scene.units = "m";
+    std::vector<render::Disk> disks;
+    for (int i = 0; i <= 80; ++i)
+        for (int j = 0; j <= 80; ++j)
+            disks.push_back({Vec3d(0.0125 * i, 0.0125 * j, 1.0), Vec3d(0, 0, 1), 0.012,
+                             render::Rgb{31, 119, 180}});
+    for (int i = 0; i < 40; ++i)
+        disks.push_back(
+            {Vec3d(30.0 + 0.0125 * i, 0, 0), Vec3d(0, 0, 1), 0.012, render::Rgb{255, 127, 14}});
+    scene.disks = disks;
+    {
+        std::ofstream page(dir_->path() / "framing.html", std::ios::binary);
+        view::write_viewer_html(page, scene);
+    }
+    open("framing.html");
+    // The plate's corners in the page, and in the PNG's iso view at the window's size.
+    const std::vector<Vec3d> corners{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
+    auto span = [](const std::vector<Vec3d>& xy) {
+        double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
+        for (const Vec3d& p : xy)
+            x0 = std::min(x0, p.x()), x1 = std::max(x1, p.x()), y0 = std::min(y0, p.y()),
+            y1 = std::max(y1, p.y());
+        return std::max(x1 - x0, y1 - y0);
+    };
+    std::vector<Vec3d> in_page, in_png;
+    render::Scene picture;
+    picture.disks = disks;
+    render::RenderOptions options;
+    options.width = kWidth;
+    options.height = kHeight;
+    const render::Camera camera = render::frame_scene(picture, options);
+    for (const Vec3d& c : corners) {
+        const json xy = browser_->evaluate(
+            cat({"surfgrowView.project(", num(c.x()), ",", num(c.y()), ",", num(c.z()), ")"}));
+        in_page.emplace_back(double(xy[0]), double(xy[1]), 0.0);
+        in_png.push_back(camera.project(c));
+    }
+    const double page = span(in_page), png = span(in_png);
+    std::printf("plate spans %.0f px in the page, %.0f px in the picture\n", page, png);
+    // Perspective against orthographic, and the panel takes part of the window: comparable,
+    // not equal. Framed on everything, the plate would span about 40 px.
+    EXPECT_GT(page, 0.5 * png);
+    EXPECT_LT(page, 1.5 * png);
+    EXPECT_GT(page, 0.3 * kHeight);
 }
 
 // The harness itself: it must see what the viewer tests claim is absent.

@@ -25,6 +25,7 @@ bool is_result_file(std::string_view file_name) {
                                                   "environment.bt",
                                                   "collision_spheres.json",
                                                   "surfaces.png",
+                                                  "corner.png",
                                                   "run.json",
                                                   "eval.json",
                                                   "collision.json"};

@@ -140,7 +140,7 @@ void draw_overlays(Image& image, const std::string& legend, const Camera& camera
     int right = image.width() - pad;  // what is drawn right to left ends here
     if (options.axes)
         right = draw_triad(image, camera, f, right, cy, layout.font_px * 7 / 4, pad / 3);
-    if (options.scale_bar && !options.camera && options.view != View::kIso) {
+    if (options.scale_bar && !options.camera && !options.close_up && options.view != View::kIso) {
         const double length = nice_length(image.width() * 0.12 / camera.scale());
         const double px = length * camera.scale();
         const std::string label = length_label(length, options.units);

@@ -50,11 +50,6 @@ struct Extent {
     [[nodiscard]] bool empty() const { return !(x0 <= x1); }
 };
 
-bool usable(const Disk& d) {
-    return d.center.allFinite() && d.normal.allFinite() && d.normal.squaredNorm() > 0 &&
-           d.radius > 0 && std::isfinite(d.radius);
-}
-
 Vec3d axes_of(const Camera& cam, const Vec3d& p) {
     return {p.dot(cam.right()), p.dot(cam.up()), p.dot(cam.forward())};
 }
@@ -66,16 +61,23 @@ Vec3d disk_half_extent(const Camera& cam, const Vec3d& n, double r) {
     return {reach(cam.right()), reach(cam.up()), reach(cam.forward())};
 }
 
-// Stray far points must not shrink the picture: frame the disks and normals, and the points
-// only when there is nothing else.
-Extent scene_extent(const Scene& scene, const Camera& cam) {
+// Stray far points must not shrink the picture: frame the disks in `framed`, the lines of no
+// disk, those of framed disks when every normal is drawn (else they are drawn only where disks
+// are big on screen, which depends on the framing), and the points only when there is nothing
+// else.
+Extent scene_extent(const Scene& scene, const Camera& cam, const std::vector<std::uint8_t>& framed,
+                    bool disk_lines) {
     Extent e;
-    for (const Disk& d : scene.disks) {
-        if (!usable(d)) continue;
+    for (std::size_t i = 0; i < scene.disks.size(); ++i) {
+        const Disk& d = scene.disks[i];
+        if (!framed[i]) continue;
         e.add(axes_of(cam, d.center), disk_half_extent(cam, d.normal.normalized(), d.radius));
     }
     for (const Segment& s : scene.lines) {
         if (!s.from.allFinite() || !s.to.allFinite()) continue;
+        if (s.disk >= 0 && (!disk_lines || static_cast<std::size_t>(s.disk) >= framed.size() ||
+                            !framed[static_cast<std::size_t>(s.disk)]))
+            continue;
         e.add(axes_of(cam, s.from), Vec3d::Zero());
         e.add(axes_of(cam, s.to), Vec3d::Zero());
     }
@@ -86,15 +88,15 @@ Extent scene_extent(const Scene& scene, const Camera& cam) {
     return e;
 }
 
-double median_radius(const Scene& scene) {
-    std::vector<double> r;
-    r.reserve(scene.disks.size());
-    for (const Disk& d : scene.disks)
-        if (usable(d)) r.push_back(d.radius);
-    if (r.empty()) return 0.0;
-    auto mid = r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2);
-    std::nth_element(r.begin(), mid, r.end());
-    return *mid;
+// Disks a close-up draws: those near its centre. All usable disks without one.
+std::vector<std::uint8_t> drawn_disks(const Scene& scene, const RenderOptions& options) {
+    std::vector<std::uint8_t> drawn(scene.disks.size(), 0);
+    for (std::size_t i = 0; i < scene.disks.size(); ++i)
+        drawn[i] =
+            usable(scene.disks[i]) &&
+            (!options.close_up || (scene.disks[i].center - options.close_up->center).norm() <=
+                                      kCloseUpReach * options.close_up->half_size);
+    return drawn;
 }
 
 }  // namespace
@@ -111,6 +113,12 @@ void validate(const RenderOptions& o) {
     check_range("margin", o.margin, 0, 0.4);
     check_range("point_size", o.point_size, 0.1, 64);
     check_range("line_width", o.line_width, 0.1, 64);
+    check_range("normal_min_radius", o.normal_min_radius, 0, 1e6);
+    if (o.close_up && (!o.close_up->center.allFinite() || !o.close_up->forward.allFinite() ||
+                       o.close_up->forward.norm() == 0 || !(o.close_up->half_size > 0) ||
+                       !std::isfinite(o.close_up->half_size)))
+        invalid(
+            "render option close_up needs a finite centre, a non-zero direction and a size > 0");
     check_range("min_disk_thickness", o.min_disk_thickness, 0, 16);
     check_range("rim_shade", o.rim_shade, 0, 1);
     check_range("lighting.ambient", o.lighting.ambient, 0, 2);
@@ -123,11 +131,21 @@ void validate(const RenderOptions& o) {
 Camera frame_scene(const Scene& scene, const RenderOptions& options) {
     validate(options);
     if (options.camera) return *options.camera;
-    Camera cam = Camera::preset(options.view);
-    const Extent e = scene_extent(scene, cam);
     const int band = overlay_layout(options, !scene.legend.empty()).band_height;
     const PixelRect rect{0, 0, double(options.width), double(options.height - band)};
     const double margin = options.margin * std::min(options.width, options.height);
+    if (options.close_up) {
+        const CloseUp& c = *options.close_up;
+        Camera cam = Camera::looking(c.forward, Vec3d::UnitZ());
+        const Vec3d a = axes_of(cam, c.center);
+        cam.fit(a.x() - c.half_size, a.x() + c.half_size, a.y() - c.half_size, a.y() + c.half_size,
+                rect, margin);
+        return cam;
+    }
+    Camera cam = Camera::preset(options.view);
+    std::vector<std::uint8_t> framed = drawn_disks(scene, options);
+    if (options.framing == Framing::kBulk) framed = bulk_disks(scene.disks);
+    const Extent e = scene_extent(scene, cam, framed, options.normal_min_radius == 0);
     if (e.empty())
         cam.fit(-1, 1, -1, 1, rect, margin);
     else
@@ -151,9 +169,10 @@ Image render_scene(const Scene& scene, const RenderOptions& options) {
     enum Facing : std::uint8_t { kSkip, kFront, kBack };
     std::vector<std::uint8_t> facing(scene.disks.size(), kSkip);
     Extent depth;  // of the disk centres, for the fog
+    const std::vector<std::uint8_t> drawn = drawn_disks(scene, options);
     for (std::size_t i = 0; i < scene.disks.size(); ++i) {
         const Disk& d = scene.disks[i];
-        if (!usable(d)) continue;
+        if (!drawn[i]) continue;
         facing[i] = d.normal.dot(f) > 0 ? kBack : kFront;
         depth.add(axes_of(cam, d.center), Vec3d::Zero());
     }
@@ -169,9 +188,10 @@ Image render_scene(const Scene& scene, const RenderOptions& options) {
     // Points and normals of a disk seen from behind are left out unless back faces are shown:
     // ghosted, they would only cloud the view through it.
     auto shown = [&](std::int32_t disk) {
-        if (options.back_faces == BackFaces::kShow || disk < 0) return true;
         const auto k = static_cast<std::size_t>(disk);
-        return k >= facing.size() || facing[k] != kBack;
+        if (disk < 0 || k >= facing.size()) return !options.close_up;
+        if (facing[k] == kSkip) return !options.close_up;
+        return options.back_faces == BackFaces::kShow || facing[k] != kBack;
     };
 
     auto ellipse_of = [&](const Disk& d, bool ghost) {
@@ -218,8 +238,14 @@ Image render_scene(const Scene& scene, const RenderOptions& options) {
     std::vector<Line> lines;
     // Normals start on their disk: lift them about two pixels towards the viewer.
     const double lift = 2 / scale + z_ref;
+    // A disk's normal only where the disk is big enough on screen for it to mean something.
+    auto big_enough = [&](std::int32_t disk) {
+        const auto k = static_cast<std::size_t>(disk);
+        return disk < 0 || k >= scene.disks.size() ||
+               scene.disks[k].radius * scale >= options.normal_min_radius;
+    };
     for (const Segment& s : scene.lines)
-        if (shown(s.disk) && s.from.allFinite() && s.to.allFinite())
+        if (shown(s.disk) && big_enough(s.disk) && s.from.allFinite() && s.to.allFinite())
             lines.push_back({cam.project(s.from) - Vec3d(0, 0, lift),
                              cam.project(s.to) - Vec3d(0, 0, lift), s.color});
 
@@ -275,7 +301,7 @@ Image render_scene(const Scene& scene, const RenderOptions& options) {
         },
         pad);
 
-    const double r_mid = median_radius(scene);
+    const double r_mid = median_disk_radius(scene.disks);
     const bool outlines = options.outlines && r_mid > 0;
     const double outline_step = std::max(3 * r_mid, 4 / scale);
     Image image(options.width, options.height);

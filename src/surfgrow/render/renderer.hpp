@@ -6,6 +6,8 @@
 #include <string>
 
 #include "surfgrow/render/camera.hpp"
+#include "surfgrow/render/close_up.hpp"
+#include "surfgrow/render/framing.hpp"
 #include "surfgrow/render/image.hpp"
 #include "surfgrow/render/scene.hpp"
 
@@ -42,6 +44,10 @@ struct RenderOptions {
     View view = View::kIso;
     /// Overrides `view` and the automatic framing when set (its frame is in output pixels).
     std::optional<Camera> camera;
+    /// What the automatic framing fits: the structure (stray patches may fall outside) or all.
+    Framing framing = Framing::kBulk;
+    /// A close-up instead of the whole scene (overrides `view` and `framing`; not `camera`).
+    std::optional<CloseUp> close_up;
     /// Free space around the fitted scene, as a fraction of the picture's smaller side (0..0.4).
     double margin = 0.04;
     /// Samples per pixel along each axis (1..4) for antialiasing.
@@ -62,6 +68,10 @@ struct RenderOptions {
     bool outlines = true;
     double point_size = 1.6;  ///< diameter of raw points, pixels
     double line_width = 1.4;  ///< width of normals, pixels
+    /// A normal that belongs to a disk (Segment::disk) is drawn only when its disk's radius is at
+    /// least this many pixels: close enough for the normal to mean something, not a red haze.
+    /// 0 draws them all.
+    double normal_min_radius = 16.0;
     /// Disks seen (nearly) edge-on are drawn at least this thick (pixels), so planes parallel
     /// to the view direction still show as lines.
     double min_disk_thickness = 0.8;
@@ -77,9 +87,10 @@ struct RenderOptions {
 /// Throws Error(kInvalidParameter) naming the first option out of range.
 void validate(const RenderOptions& options);
 
-/// The camera render_scene() uses: options.camera, or the view preset scaled and centred so that
-/// the disks and normals (the points only if there are neither) fit the area above the legend
-/// band. Validates the options.
+/// The camera render_scene() uses: options.camera; or the close-up's; or the view preset scaled
+/// and centred so that the disks and normals (the points only if there are neither) fit the area
+/// above the legend band, only the bulk of the disks (bulk_disks) unless options.framing is
+/// kAll. Validates the options.
 [[nodiscard]] Camera frame_scene(const Scene& scene, const RenderOptions& options);
 
 /// The shaded colour of a disk of colour `color` and unit `normal` under `lighting` (before fog).

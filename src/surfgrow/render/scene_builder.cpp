@@ -7,17 +7,9 @@
 
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/render/group_colors.hpp"
 
 namespace surfgrow::render {
-
-namespace {
-
-Rgb surface_color(std::size_t index, const SurfaceStyle& style) {
-    if (style.groups.empty()) return id_color(static_cast<std::int64_t>(index));
-    return id_color(style.groups[index]);  // -1: grey
-}
-
-}  // namespace
 
 Scene scene_from_surfaces(const std::vector<Surface>& surfaces, const SurfaceStyle& style) {
     if (!style.groups.empty() && style.groups.size() != surfaces.size())
@@ -29,6 +21,8 @@ Scene scene_from_surfaces(const std::vector<Surface>& surfaces, const SurfaceSty
         throw Error(
             ErrorCode::kInvalidParameter,
             cat({"normal length must be zero or positive, got ", num(style.normal_length)}));
+    std::vector<Rgb> colors;
+    if (!style.groups.empty()) colors = group_colors(surfaces, style.groups);
     Scene scene;
     scene.disks.reserve(surfaces.size());
     if (style.normals) scene.lines.reserve(surfaces.size());
@@ -42,7 +36,9 @@ Scene scene_from_surfaces(const std::vector<Surface>& surfaces, const SurfaceSty
         const Vec3d center = s.home - n * n.dot(s.home - s.centroid);
         const bool usable = len > 0 && std::isfinite(len) && s.radius > 0 &&
                             std::isfinite(s.radius) && center.allFinite();
-        scene.disks.push_back({center, n, usable ? s.radius : 0.0, surface_color(i, style)});
+        scene.disks.push_back(
+            {center, n, usable ? s.radius : 0.0,
+             colors.empty() ? id_color(static_cast<std::int64_t>(i)) : colors[i]});
         if (!usable) continue;
         radii.push_back(s.radius);
         if (style.normals) {
@@ -65,11 +61,6 @@ void add_points(Scene& scene, const PointCloud& cloud, std::span<const std::int3
         throw Error(ErrorCode::kInvalidParameter,
                     cat({"point labels must be one per point: got ", std::to_string(labels.size()),
                          " for ", std::to_string(cloud.size()), " points"}));
-    if (!style.groups.empty() && style.groups.size() != surface_count)
-        throw Error(ErrorCode::kInvalidParameter,
-                    cat({"surface groups must be one per surface: got ",
-                         std::to_string(style.groups.size()), " for ",
-                         std::to_string(surface_count), " surfaces"}));
     scene.points.reserve(scene.points.size() + cloud.size());
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         const Vec3f& p = cloud.points[i];
@@ -79,9 +70,10 @@ void add_points(Scene& scene, const PointCloud& cloud, std::span<const std::int3
         if (!labels.empty() && labels[i] >= 0) {
             const auto label = static_cast<std::size_t>(labels[i]);
             const bool known = label < surface_count;
-            c = scaled(known ? surface_color(label, style) : id_color(labels[i]),
+            const bool has_disk = known && label < scene.disks.size();
+            c = scaled(has_disk ? scene.disks[label].color : id_color(labels[i]),
                        style.point_shade);
-            if (known && label < scene.disks.size()) disk = labels[i];
+            if (has_disk) disk = labels[i];
         }
         scene.points.push_back({p, c, disk});
     }

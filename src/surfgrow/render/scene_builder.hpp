@@ -15,7 +15,8 @@ namespace surfgrow::render {
 /// How surfaces (and the points registered to them) are coloured and decorated.
 struct SurfaceStyle {
     /// Per surface, a group to colour by instead of the surface's own index (e.g. the bound
-    /// plane it belongs to); group -1 is drawn grey. Empty: each surface gets its own colour.
+    /// plane it belongs to), in the colours group_colors() gives (faces that meet differ); group
+    /// -1 is drawn grey. Empty: each surface gets its own colour (id_color).
     std::vector<std::int32_t> groups;
     bool normals = false;        ///< add each surface's normal as a line from the disk's centre
     double normal_length = 0.0;  ///< length of the normals; 0 means each surface's radius
@@ -33,10 +34,10 @@ struct SurfaceStyle {
                                         const SurfaceStyle& style = {});
 
 /// Appends the finite points of `cloud`. `labels` (empty, or one per point, as in
-/// GrowResult::labels) names each point's surface: a registered point takes that surface's
-/// colour (through `style`, darkened by point_shade) and goes with its disk (ScenePoint::disk),
-/// -1 is grey; labels at or beyond `surface_count` are coloured as ids of their own. Without
-/// labels every point is grey.
+/// GrowResult::labels) names each point's surface: a registered point takes the colour of that
+/// surface's disk in `scene` (darkened by style.point_shade) and goes with it (ScenePoint::disk),
+/// -1 is grey; labels without a disk are coloured as ids of their own. Without labels every
+/// point is grey.
 /// Throws Error(kInvalidParameter) if `labels` has the wrong length.
 void add_points(Scene& scene, const PointCloud& cloud, std::span<const std::int32_t> labels,
                 std::size_t surface_count, const SurfaceStyle& style = {});

@@ -91,7 +91,7 @@
     g.maxInstancedCount = n;
     const uniforms = {
       uLight: { value: new THREE.Vector3(-0.45, 0.65, 0.6).normalize() },
-      uByPlane: { value: 0 },
+      uByPlane: { value: L.surfaces.plane_color ? 1 : 0 },
       uBack: backFaces,
     };
     // Passes: solid disks; ghosts' depth only; ghosts' colour where their depth is the nearest.
@@ -290,7 +290,10 @@
   function addLayer(name, make) {
     try {
       layers[name] = make();
-      layers[name].object.visible = name !== 'normals' && !(name === 'cloud' && L.surfaces);
+      // The first view shows the surfaces (by bound plane) and planes; normals, the path
+      // (which would hide the surfaces) and the cloud under the surfaces are switched on by hand.
+      layers[name].object.visible =
+        name !== 'normals' && name !== 'path' && !(name === 'cloud' && L.surfaces);
       scene.add(layers[name].object);
     } catch (e) {
       fail('cannot show the ' + name + ' layer: ' + e.message);
@@ -309,7 +312,7 @@
   function draw() {
     const d = camera.position.distanceTo(controls.target);
     camera.near = Math.max(d / 200, R * 1e-6);
-    camera.far = d + 4 * R;
+    camera.far = d + 4 * R + Math.min(meta.reach || R, 100 * R);
     camera.updateProjectionMatrix();
     renderer.render(scene, camera);
     api.frames += 1;
@@ -331,7 +334,8 @@
     camera.setViewOffset(w, h, -panelShift() / 2, 0, w, h);
     camera.updateProjectionMatrix();
   }
-  // The starting view: from the front-right-above corner, as the PNG's iso view, fitted.
+  // The starting view: from the front-right-above corner, as the PNG's iso view, fitted to the
+  // bulk of the disks as the PNG is (the page's data is centred on it).
   function home() {
     const vfov = camera.fov * Math.PI / 180;
     const free = (window.innerWidth - panelShift()) / window.innerHeight;
@@ -392,7 +396,7 @@
         const row = el('div', { class: 'row' }, 'Colour: ');
         for (const [value, text] of [['0', 'by surface'], ['1', 'by bound plane']]) {
           const r = el('input', { type: 'radio', name: 'sg-colour', id: 'sg-colour-' + value, value });
-          r.checked = value === '0';
+          r.checked = Number(value) === u.uByPlane.value;
           r.addEventListener('change', () => { u.uByPlane.value = Number(value); redraw(); });
           const lab = el('label', { style: 'display:inline' });
           lab.appendChild(r);

@@ -22,13 +22,11 @@ namespace {
 
 using nlohmann::json;
 
-bool usable(const render::Disk& d) {
-    return d.center.allFinite() && d.normal.allFinite() && d.normal.norm() > 0 &&
-           std::isfinite(d.radius) && d.radius > 0;
-}
+using render::usable;
 
-// The box around what the page frames first: disks, planes and path; the points only when
-// there is nothing else (as the PNG does, so stray far returns cannot shrink the view).
+// The box around what the page frames first: the bulk of the disks, as the PNG frames them
+// (render::bulk_disks); without disks the planes and path; the points only when there is
+// nothing else (so stray far returns cannot shrink the view).
 struct Box {
     Vec3d min = Vec3d::Constant(INFINITY);
     Vec3d max = Vec3d::Constant(-INFINITY);
@@ -42,15 +40,33 @@ struct Box {
 
 Box framing_box(const ViewerScene& s, const std::vector<std::size_t>& disks) {
     Box box;
-    for (std::size_t i : disks) box.add(s.disks[i].center, s.disks[i].radius);
-    if (s.planes)
+    const std::vector<std::uint8_t> bulk = render::bulk_disks(s.disks);
+    for (std::size_t i : disks)
+        if (bulk[i]) box.add(s.disks[i].center, s.disks[i].radius);
+    if (box.empty() && s.planes)
         for (const PlanePolygon& p : *s.planes)
             for (const Vec3d& v : p.outline) box.add(v);
-    if (s.path)
+    if (box.empty() && s.path)
         for (const Vec3d& g : *s.path) box.add(g);
     if (box.empty())
         for (const render::ScenePoint& p : s.points) box.add(p.position.cast<double>());
     return box;
+}
+
+// How far from `center` anything of the page lies (the far clipping plane must reach it).
+double reach_of(const ViewerScene& s, const std::vector<std::size_t>& disks, const Vec3d& center) {
+    double r = 0;
+    auto add = [&](const Vec3d& p, double extra) {
+        if (p.allFinite()) r = std::max(r, (p - center).norm() + extra);
+    };
+    for (std::size_t i : disks) add(s.disks[i].center, s.disks[i].radius);
+    if (s.planes)
+        for (const PlanePolygon& p : *s.planes)
+            for (const Vec3d& v : p.outline) add(v, 0);
+    if (s.path)
+        for (const Vec3d& g : *s.path) add(g, 0);
+    for (const render::ScenePoint& p : s.points) add(p.position.cast<double>(), 0);
+    return r;
 }
 
 // One binary array as an inert <script> block the page decodes with atob().
@@ -232,6 +248,7 @@ std::pair<json, std::string> page_data(const ViewerScene& s) {
         {"notes", s.notes},
         {"origin", {origin.x(), origin.y(), origin.z()}},
         {"radius", radius},
+        {"reach", std::max(radius, reach_of(s, disks, center))},
         {"back_faces", s.back_faces == render::BackFaces::kShow    ? "show"
                        : s.back_faces == render::BackFaces::kGhost ? "ghost"
                                                                    : "hide"},

@@ -1,0 +1,35 @@
+// The pictures of a result: the overview `grow` writes (and `render` draws by default) and the
+// corner close-up `demo` writes (and `render --close-up` draws). One definition for all of them.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "surfgrow/core/grow_result.hpp"
+#include "surfgrow/render/renderer.hpp"
+#include "surfgrow/render/scene.hpp"
+
+namespace surfgrow::cli {
+
+struct SurfacesPicture {
+    render::Scene scene;
+    render::RenderOptions options;
+};
+
+/// Every surface as a disk, coloured by its bound plane (`plane_of_surface`, one per surface;
+/// empty: a colour per surface), with its normal where the disk is big enough on screen; iso
+/// view framed on the structure; the summary legend. Disks seen from behind are ghosted when the
+/// normals face the sensor (stats.orientation).
+[[nodiscard]] SurfacesPicture surfaces_picture(const std::vector<Surface>& surfaces,
+                                               const GrowStats& stats,
+                                               std::span<const std::int32_t> plane_of_surface,
+                                               const std::string& units, int threads);
+
+/// Turns the overview into a close-up of the corner where three bound planes meet
+/// (render::find_corner), captioned with its width. False (the picture unchanged) when the
+/// result has no such corner or is not coloured by plane.
+bool make_corner_close_up(SurfacesPicture& picture, std::span<const std::int32_t> plane_of_surface);
+
+}  // namespace surfgrow::cli
