@@ -24,10 +24,12 @@ octomap::point3d to_point(const Vec3d& p) {
 octomap::OcTreeKey key_of(const octomap::OcTree& tree, const Vec3d& p, const char* what) {
     octomap::OcTreeKey key;
     if (!p.allFinite() || !tree.coordToKeyChecked(p.x(), p.y(), p.z(), key))
-        throw Error(ErrorCode::kCloudTooLarge,
-                    cat({"environment.bt: ", what, " (", num(p.x()), ", ", num(p.y()), ", ",
-                         num(p.z()), ") lies beyond OctoMap's range of 32768 cells of ",
-                         num(tree.getResolution()), " each way from the frame origin"}));
+        throw Error(
+            ErrorCode::kCloudTooLarge,
+            cat({"environment.bt: ", what, " (", num(p.x()), ", ", num(p.y()), ", ", num(p.z()),
+                 ") lies beyond OctoMap's range of 32768 cells of ", num(tree.getResolution()),
+                 " each way from the frame origin; crop the workspace, shift the cloud "
+                 "near the origin, or leave environment.bt out (grow --no-octomap)"}));
     return key;
 }
 
