@@ -61,9 +61,9 @@ void run_render(const RenderArgs& a) {
     const io::StoredResult& r = folder.result;
     std::vector<std::int32_t> planes;
     if (a.color_by != "surface" || a.close_up) {
-        const ResultLayers layers = read_result_layers(folder.dir, r);
-        if (layers.planes)
-            planes = plane_of_surface(*layers.planes, r.surfaces.size());
+        const auto outlines = read_plane_outlines(folder.dir, r);
+        if (outlines)
+            planes = plane_of_surface(*outlines, r.surfaces.size());
         else if (a.color_by == "plane" || a.close_up)
             throw Error(ErrorCode::kCannotOpen,
                         cat({(folder.dir / "planes.json").string(), ": not found; ",

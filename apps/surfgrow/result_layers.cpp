@@ -69,6 +69,11 @@ std::optional<CoveragePath> read_coverage_layer(const fs::path& dir,
 
 }  // namespace
 
+std::optional<std::vector<PlaneOutline>> read_plane_outlines(const fs::path& dir,
+                                                             const io::StoredResult& result) {
+    return read_planes_layer(dir, result);
+}
+
 ResultLayers read_result_layers(const fs::path& dir, const io::StoredResult& result) {
     ResultLayers layers;
     layers.planes = read_planes_layer(dir, result);

@@ -40,6 +40,11 @@ struct ResultLayers {
 [[nodiscard]] ResultLayers read_result_layers(const std::filesystem::path& dir,
                                               const io::StoredResult& result);
 
+/// Only dir/planes.json, as read_result_layers() reads it (the pictures colour by plane without
+/// parsing a coverage.json of tens of MB).
+[[nodiscard]] std::optional<std::vector<PlaneOutline>> read_plane_outlines(
+    const std::filesystem::path& dir, const io::StoredResult& result);
+
 /// For each of `surface_count` surfaces, the id of the bound plane that lists it (-1: none; the
 /// first plane listing it wins).
 [[nodiscard]] std::vector<std::int32_t> plane_of_surface(const std::vector<PlaneOutline>& planes,
