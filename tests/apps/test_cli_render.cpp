@@ -260,6 +260,15 @@ TEST_F(CliRender, SameBytesForAnyThreadCount) {
 }
 
 // Every class of bad input: its own exit code, a message naming the problem, no picture.
+TEST_F(CliRender, APictureThatWouldNotFitInMemoryIsExit8AndNoFile) {
+    const fs::path png = dir_->path() / "too-big.png";
+    const test::CliRun r = run_surfgrow(cat({"render ", quoted(box_->out), " -o ", quoted(png)}),
+                                        "SURFGROW_MEMORY_LIMIT=100K ");
+    EXPECT_EQ(r.code, 8) << r.out;
+    EXPECT_NE(r.out.find("SURFGROW_MEMORY_LIMIT allows"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(png));
+}
+
 TEST_F(CliRender, BadInputsGiveTheirCodeAndWriteNoPicture) {
     test::TempDir tmp;
     fs::create_directories(tmp / "empty");

@@ -3,6 +3,7 @@
 // (memory) or destroy it recursively (stack). docs/fuzzing.md, "Resource limits".
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <functional>
 #include <string>
 
@@ -56,6 +57,23 @@ TEST(JsonLimits, BracketsInStringsDoNotCount) {
             EXPECT_EQ(std::string(e.what()).find("nested deeper"), std::string::npos) << e.what();
         }
     }
+}
+
+TEST(JsonLimits, ADocumentThatWouldNotFitInMemoryIsRefusedBeforeParsing) {
+    // 1 MB of JSON would take about 6 MB as a tree: over a 2 MB budget, each reader refuses it,
+    // naming itself, before building the tree.
+    ::setenv("SURFGROW_MEMORY_LIMIT", "2M", 1);
+    const std::string text = "[" + std::string(1'000'000, ' ') + "]";
+    for (const auto& read : kReaders) {
+        try {
+            read(text);
+            ADD_FAILURE() << "accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ErrorCode::kCloudTooLarge) << e.what();
+            EXPECT_NE(std::string(e.what()).find(".json: parsing"), std::string::npos) << e.what();
+        }
+    }
+    ::unsetenv("SURFGROW_MEMORY_LIMIT");
 }
 
 }  // namespace

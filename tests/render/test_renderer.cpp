@@ -1,6 +1,8 @@
 // Rendering: pixels where projection says, depth order, decorations, options.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
@@ -390,6 +392,24 @@ TEST(Renderer, InvalidOptionsAreInvalidParameters) {
               ErrorCode::kInvalidParameter);
     EXPECT_EQ(with([](RenderOptions& o) { o.font_file = "/nonexistent/font.ttf"; }),
               ErrorCode::kCannotOpen);
+}
+
+TEST(Renderer, APictureBeyondTheMemoryBudgetIsRefusedBeforeDrawing) {
+    // 10^5 disks need about 25 MB to draw: over a 4 MB budget, a clear error, not an OOM kill.
+    Scene scene;
+    for (int i = 0; i < 100000; ++i)
+        scene.disks.push_back({Vec3d(i % 300, i / 300, 0), Vec3d::UnitZ(), 0.5, {1, 2, 3}});
+    ::setenv("SURFGROW_MEMORY_LIMIT", "4M", 1);
+    try {
+        (void)render_scene(scene, bare());
+        ADD_FAILURE() << "drawn";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::kCloudTooLarge);
+        EXPECT_NE(std::string(e.what()).find("drawing 100000 disks"), std::string::npos)
+            << e.what();
+    }
+    ::unsetenv("SURFGROW_MEMORY_LIMIT");
+    EXPECT_EQ(render_scene(scene, bare()).width(), bare().width);
 }
 
 TEST(Renderer, SupersamplingLevelsAgreeInTheInterior) {

@@ -17,7 +17,8 @@ enum class ErrorCode : int {
     kUnknownFormat = 5,  ///< a file whose format surfgrow cannot tell or does not support
     kMalformedInput = 6,  ///< a file that claims a format but breaks it (bad header, truncated)
     kCannotWrite = 7,     ///< an output could not be written (permissions, disk full)
-    kCloudTooLarge = 8,   ///< too many points, an extent beyond float range, or a grid too wide
+    kCloudTooLarge = 8,   ///< too many points, an extent beyond float range, a grid too wide,
+                          ///< or more memory than memory_budget() allows
 };
 
 /// Exception carrying an ErrorCode and a message meant for the user. Messages name the file

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/core/memory_budget.hpp"
 #include "surfgrow/core/text.hpp"
 
 namespace surfgrow::io {
@@ -67,6 +68,8 @@ FileBytes FileBytes::read(const std::filesystem::path& path) {
     if (S_ISREG(st.st_mode) && st.st_size > 0) {
         // One read() of the size fstat reports; a file that shrinks meanwhile is read as it is.
         const auto size = static_cast<std::size_t>(st.st_size);
+        check_memory(double(size),
+                     cat({path.string(), ": reading its ", std::to_string(size / 1000000), " MB"}));
         out.data_ = std::make_unique_for_overwrite<char[]>(size);
         out.size_ = read_fully(fd, out.data_.get(), size, path);
         return out;
@@ -79,6 +82,8 @@ FileBytes FileBytes::read(const std::filesystem::path& path) {
             read_fully(fd, out.data_.get() + out.size_, capacity - out.size_, path);
         out.size_ += got;
         if (out.size_ < capacity) return out;
+        check_memory(double(capacity) * 2, cat({path.string(), ": reading more than ",
+                                                std::to_string(capacity / 1000000), " MB"}));
         auto bigger = std::make_unique_for_overwrite<char[]>(capacity * 2);
         std::memcpy(bigger.get(), out.data_.get(), out.size_);
         out.data_ = std::move(bigger);

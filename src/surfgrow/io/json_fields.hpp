@@ -29,9 +29,9 @@ inline ordered_json vec_json(const Vec3d& v) {
 }
 
 /// JSON `text` parsed; `file` names it in messages. Throws Error(kMalformedInput) when it is not
-/// JSON or nests deeper than detail::check_json_depth allows (no memory blow-up on "[[[[...").
+/// JSON or nests deeper than detail::check_json_limits allows (no memory blow-up on "[[[[...").
 inline json parse_text(std::string_view text, const std::filesystem::path& file) {
-    detail::check_json_depth(text, file.string());
+    detail::check_json_limits(text, file.string());
     try {
         return json::parse(text);
     } catch (const json::exception& e) {

@@ -144,7 +144,7 @@ std::vector<Pose> parse_poses_text(std::string_view text, std::string_view name)
 }
 
 std::vector<Pose> parse_poses_json(std::string_view text, std::string_view name) {
-    detail::check_json_depth(text, name);
+    detail::check_json_limits(text, name);
     json doc;
     try {
         doc = json::parse(text);

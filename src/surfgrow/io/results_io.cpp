@@ -348,7 +348,7 @@ StoredResult read_result_json(const std::filesystem::path& file) {
 
 StoredResult parse_result_json(std::string_view text, std::string_view source) {
     const std::filesystem::path file(source);
-    detail::check_json_depth(text, source);
+    detail::check_json_limits(text, source);
     nlohmann::json j;
     try {
         j = nlohmann::json::parse(text);

@@ -62,7 +62,7 @@ struct LinkParser {
 
 RobotModel parse_robot_json(std::string_view text, std::string_view source,
                             const RobotFrame& frame) {
-    detail::check_json_depth(text, source);
+    detail::check_json_limits(text, source);
     Json j;
     try {
         j = Json::parse(text.begin(), text.end());

@@ -23,7 +23,8 @@ std::string read_file_capped(const std::filesystem::path& path, std::size_t max_
 [[noreturn]] void malformed(std::string_view name, std::string_view message);
 
 /// Throws Error(kMalformedInput) if JSON `text` nests arrays/objects deeper than `max_depth`
-/// (a hostile file must not exhaust the stack of a recursive parser or destructor).
-void check_json_depth(std::string_view text, std::string_view name, int max_depth = 64);
+/// (a hostile file must not exhaust the stack of a recursive parser or destructor), and
+/// Error(kCloudTooLarge) if parsing it would need more memory than memory_budget() allows.
+void check_json_limits(std::string_view text, std::string_view name, int max_depth = 64);
 
 }  // namespace surfgrow::io::detail

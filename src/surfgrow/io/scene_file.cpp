@@ -143,7 +143,7 @@ ojson vec_json(const Vec3d& v) {
 }  // namespace
 
 sc::SceneDescription parse_scene_json(std::string_view text, std::string_view name) {
-    detail::check_json_depth(text, name);
+    detail::check_json_limits(text, name);
     json doc;
     try {
         doc = json::parse(text);

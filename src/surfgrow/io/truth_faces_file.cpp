@@ -103,7 +103,7 @@ void write_truth_faces(const std::filesystem::path& path, const sc::Scene& scene
 }
 
 std::vector<sc::Face> parse_truth_faces_json(std::string_view text, std::string_view name) {
-    detail::check_json_depth(text, name);
+    detail::check_json_limits(text, name);
     json doc;
     try {
         doc = json::parse(text);

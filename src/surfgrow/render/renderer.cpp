@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/core/memory_budget.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/core/threads.hpp"
 #include "surfgrow/render/overlay.hpp"
@@ -162,6 +163,14 @@ Rgb shade(Rgb color, const Vec3d& normal, const Camera& camera, const Lighting& 
 
 Image render_scene(const Scene& scene, const RenderOptions& options) {
     const Camera cam = frame_scene(scene, options);  // validates
+    // What drawing holds at once: per disk its ellipse, tile bins and framing grid (about 250
+    // bytes with the scene's own), per point 40, per normal 120, the image and one tile raster
+    // per thread. Checked before anything big is allocated: a clear error beats an OOM kill.
+    check_memory(250.0 * double(scene.disks.size()) + 40.0 * double(scene.points.size()) +
+                     120.0 * double(scene.lines.size()) +
+                     3.0 * double(options.width) * double(options.height),
+                 cat({"drawing ", std::to_string(scene.disks.size()), " disks and ",
+                      std::to_string(scene.points.size()), " points"}));
     const double scale = cam.scale();
     const Vec3d& f = cam.forward();
 
