@@ -11,23 +11,21 @@
 
 namespace surfgrow::render {
 
-/// The colours groups are drawn in: ten hues that stay apart under shading, none of them the
-/// normals' red or the unassigned grey (the "tab10" palette without its red and grey, plus its
-/// light blue and light green).
-inline constexpr std::array<Rgb, 10> kGroupPalette{{{31, 119, 180},
+/// The colours groups are drawn in: eight hues far enough apart to tell faces apart under any
+/// shading, none of them the normals' red or the unassigned grey (the "tab10" palette without its
+/// red and grey). Eight are enough: the faces that meet form an (almost) planar map.
+inline constexpr std::array<Rgb, 8> kGroupPalette{{{31, 119, 180},
                                                     {255, 127, 14},
                                                     {44, 160, 44},
                                                     {148, 103, 189},
                                                     {140, 86, 75},
                                                     {227, 119, 194},
                                                     {188, 189, 34},
-                                                    {23, 190, 207},
-                                                    {174, 199, 232},
-                                                    {152, 223, 138}}};
+                                                    {23, 190, 207}}};
 
 /// One colour per surface, by its group (`groups[i]`, e.g. its bound plane; -1: kUnassignedGrey).
 /// Groups whose surfaces lie within a few median radii of each other (faces that meet at an
-/// edge, or lie side by side) get different colours of kGroupPalette wherever ten colours allow
+/// edge, or lie side by side) get different colours of kGroupPalette wherever eight colours allow
 /// it; larger groups choose first, each the colour its neighbours touch least and, among those,
 /// the one fewest groups have so far (so nearby faces that do not touch differ as well).
 /// Deterministic. Throws Error(kInvalidParameter) unless `groups` has one

@@ -140,10 +140,14 @@ void draw_overlays(Image& image, const std::string& legend, const Camera& camera
     int right = image.width() - pad;  // what is drawn right to left ends here
     if (options.axes)
         right = draw_triad(image, camera, f, right, cy, layout.font_px * 7 / 4, pad / 3);
-    if (options.scale_bar && !options.camera && !options.close_up && options.view != View::kIso) {
+    if (options.scale_bar && !options.camera) {
         const double length = nice_length(image.width() * 0.12 / camera.scale());
         const double px = length * camera.scale();
-        const std::string label = length_label(length, options.units);
+        // The camera is orthographic: a length is true wherever it lies square to the view. In
+        // front, side and top views that is the axis planes; in iso views and close-ups, say so.
+        const bool oblique = options.close_up || options.view == View::kIso;
+        const std::string label =
+            length_label(length, options.units) + (oblique ? " across the view" : "");
         const int label_w = f ? f->measure(label) : 0;
         const double x1 = right - pad, x0 = x1 - px;
         const double y = cy + layout.font_px * 0.15;

@@ -75,10 +75,12 @@ struct RenderOptions {
     /// Disks seen (nearly) edge-on are drawn at least this thick (pixels), so planes parallel
     /// to the view direction still show as lines.
     double min_disk_thickness = 0.8;
-    bool legend = true;     ///< the scene's legend line under the picture
-    bool axes = true;       ///< a small x/y/z axis triad in the lower right corner
-    bool scale_bar = true;  ///< a scale bar (front, side and top views, where lengths are true)
-    std::string units;      ///< unit name for the scale bar ("m", "mm"); empty writes none
+    bool legend = true;  ///< the scene's legend line under the picture
+    bool axes = true;    ///< a small x/y/z axis triad in the lower right corner
+    /// A scale bar; in iso views and close-ups labelled "across the view" (true for lengths
+    /// square to the view direction, shorter for others).
+    bool scale_bar = true;
+    std::string units;  ///< unit name for the scale bar ("m", "mm"); empty writes none
     /// Font for the text; empty: Font::find_default(), and with no font on the machine the
     /// picture has no text. A font_file that does not load is an Error(kCannotOpen).
     std::filesystem::path font_file;
