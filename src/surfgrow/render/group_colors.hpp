@@ -15,13 +15,13 @@ namespace surfgrow::render {
 /// shading, none of them the normals' red or the unassigned grey (the "tab10" palette without its
 /// red and grey). Eight are enough: the faces that meet form an (almost) planar map.
 inline constexpr std::array<Rgb, 8> kGroupPalette{{{31, 119, 180},
-                                                    {255, 127, 14},
-                                                    {44, 160, 44},
-                                                    {148, 103, 189},
-                                                    {140, 86, 75},
-                                                    {227, 119, 194},
-                                                    {188, 189, 34},
-                                                    {23, 190, 207}}};
+                                                   {255, 127, 14},
+                                                   {44, 160, 44},
+                                                   {148, 103, 189},
+                                                   {140, 86, 75},
+                                                   {227, 119, 194},
+                                                   {188, 189, 34},
+                                                   {23, 190, 207}}};
 
 /// One colour per surface, by its group (`groups[i]`, e.g. its bound plane; -1: kUnassignedGrey).
 /// Groups whose surfaces lie within a few median radii of each other (faces that meet at an
