@@ -77,7 +77,8 @@ void run_render(const RenderArgs& a) {
     if (a.normals) picture.options.normal_min_radius = 0;
     picture.options.view = view;
     picture.options.framing = framing;
-    std::tie(picture.options.width, picture.options.height) = std::tie(width, height);
+    picture.options.width = width;
+    picture.options.height = height;
     if (a.close_up && !make_corner_close_up(picture, planes))
         throw Error(ErrorCode::kInvalidParameter,
                     cat({a.dir,

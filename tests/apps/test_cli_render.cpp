@@ -360,6 +360,14 @@ PictureStats picture_stats(const render::Image& image) {
     return st;
 }
 
+// `surfgrow render OUT --frame all` into `png`: the same result framed on everything.
+PictureStats framed_on_everything(const fs::path& out, const fs::path& png) {
+    const test::CliRun r =
+        run_surfgrow(cat({"render ", quoted(out), " --frame all -q -o ", quoted(png)}));
+    EXPECT_EQ(r.code, 0) << r.out;
+    return picture_stats(read_picture(png));
+}
+
 void print_stats(const char* what, const PictureStats& st) {
     std::printf("%s: ink %.3f, palette %.3f, %zu colours\n", what, st.ink, st.palette, st.colours);
 }
@@ -377,10 +385,7 @@ TEST(Pictures, TheDemoShowsTheStructureByPlaneAndACornerWithNormals) {
     EXPECT_GT(overview.ink, 0.35);
     EXPECT_GT(overview.palette, 0.55);
     EXPECT_GE(overview.colours, 5u);
-    const fs::path all = tmp / "all.png";
-    ASSERT_EQ(run_surfgrow(cat({"render ", quoted(out), " --frame all -q -o ", quoted(all)})).code,
-              0);
-    EXPECT_LT(picture_stats(read_picture(all)).ink, 0.8 * overview.ink);
+    EXPECT_LT(framed_on_everything(out, tmp / "all.png").ink, 0.8 * overview.ink);
     // The close-up: three faces meeting, each in its colour, shaded differently by its
     // orientation, with the normals drawn.
     const render::Image corner = read_picture(out / "corner.png");
@@ -422,11 +427,7 @@ TEST(Pictures, StrayPatchesFarFromTheStructureDoNotShrinkIt) {
                                              quoted(tmp / "out"), " --viewpoint 0.5,0.5,3m"}));
     ASSERT_EQ(r.code, 0) << r.out;
     const PictureStats bulk = picture_stats(read_picture(tmp / "out" / "surfaces.png"));
-    ASSERT_EQ(run_surfgrow(cat({"render ", quoted(tmp / "out"), " --frame all -q -o ",
-                                quoted(tmp / "all.png")}))
-                  .code,
-              0);
-    const PictureStats all = picture_stats(read_picture(tmp / "all.png"));
+    const PictureStats all = framed_on_everything(tmp / "out", tmp / "all.png");
     print_stats("bulk", bulk);
     print_stats("all", all);
     EXPECT_GT(bulk.ink, 0.3);
@@ -445,11 +446,7 @@ TEST(Pictures, RealTiltedStepsShowTheirFacesInColours) {
                                              quoted(tmp / "out")}));
     ASSERT_EQ(r.code, 0) << r.out;
     const PictureStats bulk = picture_stats(read_picture(tmp / "out" / "surfaces.png"));
-    ASSERT_EQ(run_surfgrow(cat({"render ", quoted(tmp / "out"), " --frame all -q -o ",
-                                quoted(tmp / "all.png")}))
-                  .code,
-              0);
-    const PictureStats all = picture_stats(read_picture(tmp / "all.png"));
+    const PictureStats all = framed_on_everything(tmp / "out", tmp / "all.png");
     print_stats("steps", bulk);
     EXPECT_GE(bulk.ink, all.ink);
     EXPECT_GT(bulk.palette, 0.75);

@@ -144,8 +144,8 @@ Camera frame_scene(const Scene& scene, const RenderOptions& options) {
         return cam;
     }
     Camera cam = Camera::preset(options.view);
-    std::vector<std::uint8_t> framed = drawn_disks(scene, options);
-    if (options.framing == Framing::kBulk) framed = bulk_disks(scene.disks);
+    const std::vector<std::uint8_t> framed =
+        options.framing == Framing::kBulk ? bulk_disks(scene.disks) : drawn_disks(scene, options);
     const Extent e = scene_extent(scene, cam, framed, options.normal_min_radius == 0);
     if (e.empty())
         cam.fit(-1, 1, -1, 1, rect, margin);
