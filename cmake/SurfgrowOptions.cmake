@@ -20,9 +20,12 @@ if(SURFGROW_NATIVE)
     add_compile_options(-march=native)
 endif()
 
+# -O1 -g1 whatever the build type: GCC's UBSan at -O2 -g compiles 4-8x slower than a Release unit
+# (a test file: 121 s against 16 s; -O1 -g1: 63 s), and -O1 with line tables is what ASan's own
+# documentation suggests: exact reports, file:line in every stack, tests still fast.
 if(SURFGROW_SANITIZE)
     add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer
-                        -fno-sanitize-recover=undefined)
+                        -fno-sanitize-recover=undefined -O1 -g1)
     add_link_options(-fsanitize=address,undefined)
 endif()
 
