@@ -1,4 +1,4 @@
-// PNG encoding and decoding of Images (libpng's simplified API).
+// PNG encoding and decoding of Images (libpng: its write API, and the simplified read API).
 #pragma once
 
 #include <istream>

@@ -85,10 +85,29 @@ void Raster::fill_ellipse(const ScreenEllipse& e) {
         double alpha = (dx * ux + dy * uy) / a;
         double beta = (dy * ux - dx * uy) / b;
         const std::size_t row = index(0, j);
+        if (!ghost_) {
+            for (int i = i0; i <= i1; ++i, alpha += da, beta += db) {
+                const auto depth = static_cast<float>(e.depth + beta * e.depth_b);
+                const std::size_t k = row + static_cast<std::size_t>(i);
+                if (depth < depth_[k]) {
+                    depth_[k] = depth;
+                    color_[k] = alpha * alpha + beta * beta > rim_start ? rim : fill;
+                }
+            }
+            continue;
+        }
+        // Ghosts: one sample in three, counted along the row instead of a modulo per sample.
+        int phase = (i0 + j + ghost_phase_) % 3;
         for (int i = i0; i <= i1; ++i, alpha += da, beta += db) {
+            const bool drawn = phase == 0;
+            phase = phase == 2 ? 0 : phase + 1;
+            if (!drawn) continue;
             const auto depth = static_cast<float>(e.depth + beta * e.depth_b);
-            plot(row + static_cast<std::size_t>(i), i, j, depth,
-                 alpha * alpha + beta * beta > rim_start ? rim : fill);
+            const std::size_t k = row + static_cast<std::size_t>(i);
+            if (depth < depth_[k]) {
+                depth_[k] = depth;
+                color_[k] = alpha * alpha + beta * beta > rim_start ? rim : fill;
+            }
         }
     }
 }
@@ -160,29 +179,55 @@ void Raster::outline(double step, Rgb color, double strength) {
     const auto fstep = static_cast<float>(step);
     const std::uint32_t ink = pack(color);
     const auto w = static_cast<std::uint32_t>(std::lround(std::clamp(strength, 0.0, 1.0) * 256));
-    auto farther = [&](float d, int bx, int by) {
-        if (bx < 0 || by < 0 || bx >= bw_ || by >= bh_) return false;
-        return scratch_[index(bx, by)] - d > fstep;  // background (infinity) is farther
+    auto mix_ink = [&](std::size_t i) {
+        const std::uint32_t c = color_[i];
+        auto ch = [&](int shift) {
+            const std::uint32_t a = (c >> shift) & 0xff, b = (ink >> shift) & 0xff;
+            return ((a * (256 - w) + b * w) >> 8) << shift;
+        };
+        color_[i] = ch(16) | ch(8) | ch(0);
     };
     // Only the window's own samples change; the apron is there to be looked at.
     const int lo_x = apron_, hi_x = bw_ - apron_, lo_y = apron_, hi_y = bh_ - apron_;
+    if (apron_ == 0) {
+        // No apron: neighbours past the buffer's edge count as not farther.
+        auto farther = [&](float d, int bx, int by) {
+            if (bx < 0 || by < 0 || bx >= bw_ || by >= bh_) return false;
+            return scratch_[index(bx, by)] - d > fstep;  // background (infinity) is farther
+        };
+        for (int by = lo_y; by < hi_y; ++by)
+            for (int bx = lo_x; bx < hi_x; ++bx) {
+                const float d = scratch_[index(bx, by)];
+                if (std::isfinite(d) && (farther(d, bx + 1, by) || farther(d, bx - 1, by) ||
+                                         farther(d, bx, by + 1) || farther(d, bx, by - 1)))
+                    mix_ink(index(bx, by));
+            }
+        return;
+    }
+    // With an apron every neighbour within reach lies in the buffer: no bounds to check, and a
+    // row's edge flags are computed without branches (vectorised). A background sample
+    // (infinity) has no farther neighbour: inf - inf and finite - inf are not > step.
+    const auto width = static_cast<std::size_t>(hi_x - lo_x);
+    edge_.resize(width);
+    const std::size_t stride = static_cast<std::size_t>(bw_);
     for (int by = lo_y; by < hi_y; ++by) {
-        for (int bx = lo_x; bx < hi_x; ++bx) {
-            const std::size_t i = index(bx, by);
-            const float d = scratch_[i];
-            if (!std::isfinite(d)) continue;
-            bool edge = false;
-            for (int k = 1; k <= reach && !edge; ++k)
-                edge = farther(d, bx + k, by) || farther(d, bx - k, by) || farther(d, bx, by + k) ||
-                       farther(d, bx, by - k);
-            if (!edge) continue;
-            const std::uint32_t c = color_[i];
-            auto ch = [&](int shift) {
-                const std::uint32_t a = (c >> shift) & 0xff, b = (ink >> shift) & 0xff;
-                return ((a * (256 - w) + b * w) >> 8) << shift;
-            };
-            color_[i] = ch(16) | ch(8) | ch(0);
+        const float* mid = scratch_.data() + index(lo_x, by);
+        std::fill(edge_.begin(), edge_.end(), std::uint8_t{0});
+        for (int k = 1; k <= reach; ++k) {
+            const auto ks = static_cast<std::size_t>(k);
+            const float *up = mid - ks * stride, *down = mid + ks * stride;
+            const float *left = mid - ks, *right = mid + ks;
+            std::uint8_t* flag = edge_.data();
+            for (std::size_t x = 0; x < width; ++x) {
+                const float d = mid[x];
+                flag[x] |=
+                    static_cast<std::uint8_t>((right[x] - d > fstep) | (left[x] - d > fstep) |
+                                              (down[x] - d > fstep) | (up[x] - d > fstep));
+            }
         }
+        const std::size_t row = index(lo_x, by);
+        for (std::size_t x = 0; x < width; ++x)
+            if (edge_[x]) mix_ink(row + x);
     }
 }
 

@@ -84,7 +84,8 @@ class Raster {
     bool ghost_ = false;
     std::vector<std::uint32_t> color_;  // 0x00RRGGBB
     std::vector<float> depth_;
-    std::vector<float> scratch_;  // depth copy for outline()
+    std::vector<float> scratch_;      // depth copy for outline()
+    std::vector<std::uint8_t> edge_;  // outline(): one row's edge flags
 };
 
 }  // namespace surfgrow::render
