@@ -7,6 +7,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "result_layers.hpp"
+#include "surfaces_picture.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/atomic_output.hpp"
@@ -77,9 +78,7 @@ void run_view(const ViewArgs& a) {
     s.legend =
         render::legend_line(r.stats.points_in, r.stats.surfaces, r.stats.registered_fraction());
     s.offset = r.meta.offset;
-    // Normals face the sensor unless no viewpoint was known: then there is no "back" to ghost.
-    s.back_faces = r.stats.orientation == OrientationSource::kUp ? render::BackFaces::kShow
-                                                                 : render::BackFaces::kGhost;
+    s.back_faces = back_faces_for(r.stats.orientation);
     render::Scene scene = render::scene_from_surfaces(r.surfaces);
     if (layers.planes) {
         // The PNG's colours: faces that meet differ; each polygon in its disks' colour.

@@ -8,6 +8,12 @@
 
 namespace surfgrow::cli {
 
+render::BackFaces back_faces_for(OrientationSource source) {
+    const bool sensor_known =
+        source == OrientationSource::kScanOrigins || source == OrientationSource::kViewpoint;
+    return sensor_known ? render::BackFaces::kGhost : render::BackFaces::kShow;
+}
+
 SurfacesPicture surfaces_picture(const std::vector<Surface>& surfaces, const GrowStats& stats,
                                  std::span<const std::int32_t> plane_of_surface,
                                  const std::string& units, int threads) {
@@ -21,9 +27,7 @@ SurfacesPicture surfaces_picture(const std::vector<Surface>& surfaces, const Gro
     if (!plane_of_surface.empty()) p.scene.legend += ", coloured by bound plane";
     p.options.units = units;
     p.options.threads = threads;
-    // Normals face the sensor unless no viewpoint was known; then show both sides of every disk.
-    if (stats.orientation == OrientationSource::kUp)
-        p.options.back_faces = render::BackFaces::kShow;
+    p.options.back_faces = back_faces_for(stats.orientation);
     return p;
 }
 

@@ -18,10 +18,15 @@ struct SurfacesPicture {
     render::RenderOptions options;
 };
 
+/// How disks seen from behind are drawn, for normals oriented by `source`: ghosted only when the
+/// normals face a sensor that was known (scan origins, a viewpoint). The frame origin is a guess
+/// (a world-frame cloud may have it on its floor, where half the floor's normals then point
+/// down), and +z leaves walls either way: both sides shown.
+[[nodiscard]] render::BackFaces back_faces_for(OrientationSource source);
+
 /// Every surface as a disk, coloured by its bound plane (`plane_of_surface`, one per surface;
 /// empty: a colour per surface), with its normal where the disk is big enough on screen; iso
-/// view framed on the structure; the summary legend. Disks seen from behind are ghosted when the
-/// normals face the sensor (stats.orientation).
+/// view framed on the structure; the summary legend; back faces by back_faces_for.
 [[nodiscard]] SurfacesPicture surfaces_picture(const std::vector<Surface>& surfaces,
                                                const GrowStats& stats,
                                                std::span<const std::int32_t> plane_of_surface,

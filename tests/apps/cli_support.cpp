@@ -43,7 +43,7 @@ std::string quoted(const fs::path& p) {
     return cat({"'", p.string(), "'"});
 }
 
-GrownBox grow_box(const fs::path& dir) {
+GrownBox grow_box(const fs::path& dir, const std::string& grow_args) {
     GrownBox box;
     std::mt19937_64 rng(3);
     for (const auto& f : box_faces(kBoxMin, kBoxMax))
@@ -53,9 +53,9 @@ GrownBox grow_box(const fs::path& dir) {
     box.cloud = dir / "box.ply";
     box.out = dir / "out";
     io::write_cloud(box.cloud, box.points);
-    const CliRun r =
-        run_surfgrow(cat({"grow ", quoted(box.cloud), " -o ", quoted(box.out),
-                          " --seed 1 -q --no-planes --no-occupancy --no-octomap --no-collision"}));
+    const CliRun r = run_surfgrow(
+        cat({"grow ", quoted(box.cloud), " -o ", quoted(box.out),
+             " --seed 1 -q --no-planes --no-occupancy --no-octomap --no-collision", grow_args}));
     if (r.code != 0) throw std::runtime_error("surfgrow grow failed: " + r.out);
     box.result = io::read_result_json(box.out / "surfaces.json");
     return box;

@@ -32,7 +32,9 @@ struct GrownBox {
     PointCloud points;            ///< the cloud as written
     io::StoredResult result;      ///< out/surfaces.json read back
 };
-GrownBox grow_box(const std::filesystem::path& dir);
+/// `grow_args` are added to the command (e.g. " --viewpoint 0,0,0m": the same normals, with the
+/// sensor on record).
+GrownBox grow_box(const std::filesystem::path& dir, const std::string& grow_args = "");
 
 /// Writes out/planes.json (one bound plane per box face: its rectangle and the surfaces on it)
 /// and out/coverage.json (a zigzag of goals just inside the face x = -0.2), as `surfgrow planes`
