@@ -86,6 +86,8 @@ void add_grow_command(CLI::App& app) {
         if (const std::string hint = sparsity_hint(run.result.grow.stats, config.grow, units);
             !hint.empty())
             std::cerr << hint << std::endl;
+        if (const std::string hint = orientation_hint(run.result.grow.stats); !hint.empty())
+            std::cerr << hint << std::endl;
     });
 }
 

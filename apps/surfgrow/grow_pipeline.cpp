@@ -1,5 +1,6 @@
 #include "grow_pipeline.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -99,6 +100,18 @@ std::string sparsity_hint(const GrowStats& s, const GrowerConfig& config, const 
              " (points too far apart; the paper's mu suits a ~1 m workspace).\n      ", advice,
              "; --stats shows registration by range."});
     return hint;
+}
+
+std::string orientation_hint(const GrowStats& s) {
+    if (!s.origin_looks_wrong()) return "";
+    const auto share = static_cast<int>(std::lround(
+        100.0 * double(s.edge_on_points) / double(std::max<std::uint64_t>(s.registered, 1))));
+    return cat({"note: the cloud names no sensor position and its frame origin sees ",
+                std::to_string(share),
+                "% of the registered points edge-on: it is probably not where the sensor "
+                "stood (a map-frame cloud).\n      Normals face the origin where it can tell "
+                "and +z elsewhere; give --viewpoint X,Y,Z (or scan2cloud's scan origins) for "
+                "normals that face the sensor."});
 }
 
 std::function<void(std::string_view, double)> terminal_progress() {

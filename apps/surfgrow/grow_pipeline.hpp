@@ -60,6 +60,10 @@ std::string stats_table(const GrowStats& stats, const CloudUnits& units);
 std::string sparsity_hint(const GrowStats& stats, const GrowerConfig& config,
                           const CloudUnits& units);
 
+/// Advice for normals that faced a guessed frame origin which sees much of the cloud edge-on
+/// (GrowStats::origin_looks_wrong: a map-frame cloud), or "". Printed on stderr.
+std::string orientation_hint(const GrowStats& stats);
+
 /// A progress callback for GrowerConfig::progress that draws on stderr when it is a terminal,
 /// or nothing otherwise; it clears its line at the pipeline's "done".
 std::function<void(std::string_view, double)> terminal_progress();

@@ -314,6 +314,49 @@ TEST_F(CliGrow, ASecondRunIntoAFolderBeingWrittenIsRefused) {
     EXPECT_EQ(surfgrow("grow " + q(input_) + " -o " + q(out) + " --no-picture").code, 0);
 }
 
+TEST_F(CliGrow, AFrameOriginOnTheFloorIsSaidNotToBeTheSensor) {
+    // A map-frame cloud: a floor through the frame origin and a wall, no viewpoint. The origin
+    // sees the floor edge-on, so its normals face +z, and grow says the origin is no sensor.
+    PointCloud map;
+    std::mt19937_64 rng(4);
+    test::sample_rect({{0, 0, 0}, Vec3d::UnitX(), Vec3d::UnitY(), 0.6, 0.6}, 0.005, 0.3, 0.001, rng,
+                      map.points);
+    test::sample_rect({{0.8, 0, 0.4}, Vec3d::UnitY(), Vec3d::UnitZ(), 0.6, 0.3}, 0.005, 0.3, 0.001,
+                      rng, map.points);
+    io::write_cloud(dir_ / "map.ply", map);
+    const std::string note = "probably not where the sensor stood";
+    const CliRun r = surfgrow("grow " + q(dir_ / "map.ply") + " -o " + q(dir_ / "map") +
+                              " --no-planes --no-coverage --no-occupancy --no-octomap "
+                              "--no-collision --no-picture");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find(note), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("--viewpoint"), std::string::npos) << r.out;
+    const io::StoredResult res = io::read_result_json(dir_ / "map" / "surfaces.json");
+    std::size_t floor = 0;
+    for (const Surface& surf : res.surfaces)
+        if (std::abs(surf.normal.z()) > 0.9) {
+            ++floor;
+            EXPECT_GT(surf.normal.z(), 0.9) << surf.home.transpose();
+        }
+    EXPECT_GT(floor, 50u);
+    const auto summary =
+        nlohmann::json::parse(test::read_bytes(dir_ / "map" / "surfaces.json")).at("summary");
+    EXPECT_GT(summary.at("edge_on_points").get<double>(),
+              0.3 * summary.at("registered").get<double>());
+
+    // The sensor given, or a sensor-frame scan (the box, seen from the origin below it): no note.
+    const CliRun given = surfgrow("grow " + q(dir_ / "map.ply") + " -o " + q(dir_ / "given") +
+                                  " --viewpoint 0,0,1.5m --no-planes --no-coverage "
+                                  "--no-occupancy --no-octomap --no-collision --no-picture");
+    ASSERT_EQ(given.code, 0) << given.out;
+    EXPECT_EQ(given.out.find(note), std::string::npos) << given.out;
+    const CliRun box = surfgrow("grow " + q(input_) + " -o " + q(dir_ / "box") +
+                                " --no-planes --no-coverage --no-occupancy --no-octomap "
+                                "--no-collision --no-picture");
+    ASSERT_EQ(box.code, 0) << box.out;
+    EXPECT_EQ(box.out.find(note), std::string::npos) << box.out;
+}
+
 TEST_F(CliGrow, EmptyCloudIsNotAnError) {
     test::write_bytes(
         dir_ / "empty.ply",

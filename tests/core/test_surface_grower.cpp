@@ -367,6 +367,29 @@ TEST(SurfaceGrower, WithoutViewpointUsesFrameOriginOrFacesUp) {
     for (const Surface& surf : r.surfaces) EXPECT_GT(surf.normal.z(), 0.9);
 }
 
+TEST(SurfaceGrower, AFloorThroughTheFrameOriginFacesUp) {
+    // A map-frame cloud with its origin on the floor (as the real tilted-steps.pcd): the origin
+    // sees the floor edge-on, so "facing the origin" flipped its normals by noise alone. Beyond
+    // the grazing limit they face +z; the wall the origin does see still faces it.
+    const Scene s = sample_scene({{{0, 0, 0}, Vec3d::UnitX(), Vec3d::UnitY(), 0.6, 0.6},
+                                  {{0.8, 0, 0.4}, Vec3d::UnitY(), Vec3d::UnitZ(), 0.6, 0.3}},
+                                 0.005, 0.001, 15);
+    const GrowResult r = grow_surfaces(s.cloud, config_mm());
+    ASSERT_EQ(r.stats.orientation, OrientationSource::kFrameOrigin);
+    std::size_t floor = 0, wall = 0;
+    for (const Surface& surf : r.surfaces) {
+        if (std::abs(surf.normal.z()) > 0.9) {
+            ++floor;
+            EXPECT_GT(surf.normal.z(), 0.9) << "home " << surf.home.transpose();
+        } else if (std::abs(surf.normal.x()) > 0.9) {
+            ++wall;
+            EXPECT_LT(surf.normal.x(), -0.9) << "home " << surf.home.transpose();
+        }
+    }
+    EXPECT_GT(floor, 50u);
+    EXPECT_GT(wall, 20u);
+}
+
 TEST(SurfaceGrower, RangeBandsCountEveryValidPoint) {
     Scene s =
         sample_scene({{{0.5, 0, 0}, Vec3d::UnitY(), Vec3d::UnitZ(), 0.3, 0.3}}, 0.005, 0.0, 13);

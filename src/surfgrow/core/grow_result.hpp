@@ -52,6 +52,10 @@ struct GrowStats {
     std::uint64_t lone_surfaces = 0;           ///< of those, in no plane with any neighbour
     std::uint64_t noise_points = 0;            ///< valid points left unregistered
     OrientationSource orientation = OrientationSource::kUp;
+    /// kFrameOrigin: registered points on surfaces the guessed origin sees beyond the grazing
+    /// limit (no sensor there could have measured them: they face +z instead). Many of them
+    /// say the origin is not the sensor (a map-frame cloud): see origin_looks_wrong().
+    std::uint64_t edge_on_points = 0;
     bool range_known = false;            ///< whether range bands could be measured
     Vec3d range_origin = Vec3d::Zero();  ///< where ranges are measured from (single origin)
     std::vector<RangeBand> range_bands;
@@ -77,6 +81,12 @@ struct GrowStats {
     [[nodiscard]] bool sparse_for_mu() const {
         if (valid_points == 0 || registered_fraction() >= 0.9) return false;
         return rejected_sparse >= rejected_nonplanar && rejected_sparse >= homes_tried / 4;
+    }
+    /// The normals faced a guessed frame origin that sees over 5 % of the registered points
+    /// edge-on (a sensor-frame scan: about 1 %): it is probably not where the sensor stood.
+    [[nodiscard]] bool origin_looks_wrong() const {
+        return orientation == OrientationSource::kFrameOrigin &&
+               double(edge_on_points) > 0.05 * double(registered);
     }
     /// Points per surface: the paper's data reduction (100 000 points -> 2 000 surfaces = 50x).
     [[nodiscard]] double data_reduction() const {

@@ -11,6 +11,7 @@
 #include <functional>
 #include <initializer_list>
 #include <limits>
+#include <numbers>
 #include <numeric>
 #include <string>
 #include <string_view>
@@ -1097,10 +1098,16 @@ std::vector<RangeBand> range_bands(const PointCloud& cloud, const Orientation& o
     return bands;
 }
 
-/// Stage 4c: every normal faces its home point's sensor (or +z when none is known).
-void orient_normals(const PointCloud& cloud, const Orientation& orient,
-                    std::span<const std::uint32_t> original, std::span<const std::uint32_t> home_of,
-                    int threads, std::vector<Surface>& surfaces) {
+/// Stage 4c: every normal faces its home point's sensor (or +z when none is known). A guessed
+/// frame origin that sees a surface edge-on (its plane passes near the origin: a map-frame
+/// cloud's floor) says nothing about its side: that surface faces +z instead.
+/// Returns the members of those surfaces.
+std::uint64_t orient_normals(const PointCloud& cloud, const Orientation& orient,
+                             std::span<const std::uint32_t> original,
+                             std::span<const std::uint32_t> home_of, double max_incidence_deg,
+                             int threads, std::vector<Surface>& surfaces) {
+    std::uint64_t edge_on = 0;
+    const double cos_grazing = std::cos(max_incidence_deg * (std::numbers::pi / 180.0));
     const bool per_scan = orient.source == OrientationSource::kScanOrigins;
     auto origin_of = [&](std::uint32_t sorted) -> Vec3d {
         if (per_scan) {
@@ -1109,14 +1116,24 @@ void orient_normals(const PointCloud& cloud, const Orientation& orient,
         }
         return orient.origin;
     };
-#pragma omp parallel for num_threads(threads) schedule(static)
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : edge_on)
     for (std::size_t k = 0; k < surfaces.size(); ++k) {
         Surface& s = surfaces[k];
-        const Vec3d towards = orient.source == OrientationSource::kUp
-                                  ? Vec3d::UnitZ()
-                                  : Vec3d(origin_of(home_of[k]) - s.home);
+        Vec3d towards = orient.source == OrientationSource::kUp
+                            ? Vec3d::UnitZ()
+                            : Vec3d(origin_of(home_of[k]) - s.home);
+        // Edge-on: the origin lies within the grazing angle of the fitted plane (through the
+        // centroid) or within its tolerance, where noise alone decides the side.
+        const Vec3d from_plane = orient.origin - s.centroid;
+        if (orient.source == OrientationSource::kFrameOrigin &&
+            std::abs(s.normal.dot(from_plane)) <
+                std::max(cos_grazing * from_plane.norm(), s.tolerance)) {
+            towards = Vec3d::UnitZ();
+            edge_on += s.point_count;
+        }
         if (s.normal.dot(towards) < 0) s.normal = -s.normal;
     }
+    return edge_on;
 }
 
 /// Stage 4d: best-fit registration can take every member of a surface; such surfaces are dropped
@@ -1283,7 +1300,8 @@ GrowResult SurfaceGrower::grow(const PointCloud& cloud, const GrowIndex& grow_in
     st.registered = member_statistics(index, labels, tolerance, threads, result.surfaces);
     st.noise_points = st.valid_points - st.registered;
     st.range_bands = range_bands(cloud, orient, cfg.range_band, threads, result.labels);
-    orient_normals(cloud, orient, orig, home_of, threads, result.surfaces);
+    st.edge_on_points = orient_normals(cloud, orient, orig, home_of, cfg.max_incidence_deg, threads,
+                                       result.surfaces);
     st.dropped_surfaces = drop_empty_surfaces(threads, result.surfaces, result.labels);
     st.surfaces = result.surfaces.size();
     st.seconds.finish = stage.lap();

@@ -177,6 +177,7 @@ nlohmann::json summary_json(const GrowStats& s) {
         {"noise_points", s.noise_points},
         {"data_reduction", s.data_reduction()},
         {"orientation", orientation_name(s.orientation)},
+        {"edge_on_points", s.edge_on_points},
         {"range_origin",
          s.range_known ? nlohmann::json{s.range_origin.x(), s.range_origin.y(), s.range_origin.z()}
                        : nlohmann::json(nullptr)},
