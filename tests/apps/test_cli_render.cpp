@@ -381,8 +381,10 @@ PictureStats framed_on_everything(const fs::path& out, const fs::path& png) {
 }
 
 void print_stats(const char* what, const PictureStats& st) {
-    std::printf("%s: ink %.3f, solid %.3f, palette %.3f, %zu colours\n", what, st.ink, st.solid,
-                st.palette, st.colours);
+    std::printf("%s: ink %.3f, solid %.3f, palette %.3f, %zu colours, shades", what, st.ink,
+                st.solid, st.palette, st.colours);
+    for (const double s : st.shade) std::printf(" %.2f", s);
+    std::printf("\n");
 }
 
 TEST(Pictures, TheDemoShowsTheStructureByPlaneAndACornerWithNormals) {
@@ -467,6 +469,11 @@ TEST(Pictures, RealTiltedStepsShowTheirFacesInColours) {
     // The cloud has no viewpoint and its frame origin lies on its floor: the normals facing the
     // origin flip across the floor, so ghosting "back faces" paled half of it (solid 0.47).
     EXPECT_GT(bulk.solid, 0.8);
+    // Shaded by orientation: the main colours' brightness differs (floor, risers, walls).
+    ASSERT_GE(bulk.shade.size(), 2u);
+    EXPECT_GT(*std::max_element(bulk.shade.begin(), bulk.shade.end()) -
+                  *std::min_element(bulk.shade.begin(), bulk.shade.end()),
+              0.15);
 }
 
 }  // namespace
