@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -81,15 +82,17 @@ TEST(RealScans, NoAcceptedSurfaceIsALineOrABlob) {
             ASSERT_LE(d, s.tolerance * (1 + 1e-4) + 1e-6) << "point " << i;
         }
         // tilted-steps.pcd is a map-frame cloud with its origin on the floor: grow says so, and
-        // the floor's normals all face up (facing the origin, noise flipped half of them).
+        // the floor's normals face up (facing the origin, noise flipped 40 % of its points down;
+        // what stays down are small patches whose fitted normal tilts more than the few degrees
+        // at which the origin sees them: 0.6 % of the points at this mu).
         if (name.find("tilted-steps") != std::string::npos) {
             EXPECT_TRUE(r.stats.origin_looks_wrong());
-            std::size_t up = 0, down = 0;
+            std::uint64_t up = 0, down = 0;
             for (const Surface& s : r.surfaces)
                 if (std::abs(s.normal.z()) > 0.95 && std::abs(s.centroid.z()) < 0.03)
-                    (s.normal.z() > 0 ? up : down) += 1;
-            EXPECT_GT(up, 500u);
-            EXPECT_EQ(down, 0u);
+                    (s.normal.z() > 0 ? up : down) += s.point_count;
+            EXPECT_GT(up, 50000u);
+            EXPECT_LT(double(down), 0.02 * double(up + down));
         }
         if (r.stats.surfaces > 0) ++grown;
     }
