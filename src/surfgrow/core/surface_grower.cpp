@@ -1107,7 +1107,15 @@ std::uint64_t orient_normals(const PointCloud& cloud, const Orientation& orient,
                              std::span<const std::uint32_t> home_of, double max_incidence_deg,
                              int threads, std::vector<Surface>& surfaces) {
     std::uint64_t edge_on = 0;
+    // Edge-on: the origin lies within the grazing angle of the fitted plane (through the
+    // centroid) or within its tolerance, where noise alone decides the side.
+    const bool guessed = orient.source == OrientationSource::kFrameOrigin;
     const double cos_grazing = std::cos(max_incidence_deg * (std::numbers::pi / 180.0));
+    auto seen_edge_on = [&](const Surface& s) {
+        const Vec3d from_plane = orient.origin - s.centroid;
+        return std::abs(s.normal.dot(from_plane)) <
+               std::max(cos_grazing * from_plane.norm(), s.tolerance);
+    };
     const bool per_scan = orient.source == OrientationSource::kScanOrigins;
     auto origin_of = [&](std::uint32_t sorted) -> Vec3d {
         if (per_scan) {
@@ -1122,12 +1130,7 @@ std::uint64_t orient_normals(const PointCloud& cloud, const Orientation& orient,
         Vec3d towards = orient.source == OrientationSource::kUp
                             ? Vec3d::UnitZ()
                             : Vec3d(origin_of(home_of[k]) - s.home);
-        // Edge-on: the origin lies within the grazing angle of the fitted plane (through the
-        // centroid) or within its tolerance, where noise alone decides the side.
-        const Vec3d from_plane = orient.origin - s.centroid;
-        if (orient.source == OrientationSource::kFrameOrigin &&
-            std::abs(s.normal.dot(from_plane)) <
-                std::max(cos_grazing * from_plane.norm(), s.tolerance)) {
+        if (guessed && seen_edge_on(s)) {
             towards = Vec3d::UnitZ();
             edge_on += s.point_count;
         }

@@ -86,14 +86,10 @@ void Raster::fill_ellipse(const ScreenEllipse& e) {
         double beta = (dy * ux - dx * uy) / b;
         const std::size_t row = index(0, j);
         if (!ghost_) {
-            for (int i = i0; i <= i1; ++i, alpha += da, beta += db) {
-                const auto depth = static_cast<float>(e.depth + beta * e.depth_b);
-                const std::size_t k = row + static_cast<std::size_t>(i);
-                if (depth < depth_[k]) {
-                    depth_[k] = depth;
-                    color_[k] = alpha * alpha + beta * beta > rim_start ? rim : fill;
-                }
-            }
+            for (int i = i0; i <= i1; ++i, alpha += da, beta += db)
+                put(row + static_cast<std::size_t>(i),
+                    static_cast<float>(e.depth + beta * e.depth_b),
+                    alpha * alpha + beta * beta > rim_start ? rim : fill);
             continue;
         }
         // Ghosts: one sample in three, counted along the row instead of a modulo per sample.
@@ -101,13 +97,10 @@ void Raster::fill_ellipse(const ScreenEllipse& e) {
         for (int i = i0; i <= i1; ++i, alpha += da, beta += db) {
             const bool drawn = phase == 0;
             phase = phase == 2 ? 0 : phase + 1;
-            if (!drawn) continue;
-            const auto depth = static_cast<float>(e.depth + beta * e.depth_b);
-            const std::size_t k = row + static_cast<std::size_t>(i);
-            if (depth < depth_[k]) {
-                depth_[k] = depth;
-                color_[k] = alpha * alpha + beta * beta > rim_start ? rim : fill;
-            }
+            if (drawn)
+                put(row + static_cast<std::size_t>(i),
+                    static_cast<float>(e.depth + beta * e.depth_b),
+                    alpha * alpha + beta * beta > rim_start ? rim : fill);
         }
     }
 }

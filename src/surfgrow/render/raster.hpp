@@ -68,12 +68,16 @@ class Raster {
         return static_cast<std::size_t>(by) * static_cast<std::size_t>(bw_) +
                static_cast<std::size_t>(bx);
     }
-    void plot(std::size_t i, int bx, int by, float depth, std::uint32_t color) {
-        if (ghost_ && (bx + by + ghost_phase_) % 3 != 0) return;
+    // The depth test: sample i takes `color` where `depth` is nearer than what it holds.
+    void put(std::size_t i, float depth, std::uint32_t color) {
         if (depth < depth_[i]) {
             depth_[i] = depth;
             color_[i] = color;
         }
+    }
+    void plot(std::size_t i, int bx, int by, float depth, std::uint32_t color) {
+        if (ghost_ && (bx + by + ghost_phase_) % 3 != 0) return;
+        put(i, depth, color);
     }
 
     int ss_, apron_;
