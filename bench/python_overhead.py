@@ -8,7 +8,8 @@ array, a float64 array, a surfgrow.Cloud) calls surfgrow.grow 2 times to warm up
 times measured. Each call is timed twice: its Python wall time (time.perf_counter around
 surfgrow.grow) and the library's own time of that call, summary['seconds']['call'] (measured in
 C++ around the library call, GIL released). The overhead is the median over the runs of
-(wall - call) / call: argument parsing, the array copy or conversion, the result object. The
+(wall - call) / call: argument parsing, the conversion of a float64 array (a float32 one is
+read in place), the result object. The
 target is 5 %.
 """
 

@@ -61,11 +61,6 @@ std::shared_ptr<PointCloud> make_cloud(const py::handle& points, const py::handl
 
 }  // namespace
 
-std::shared_ptr<const PointCloud> shared_cloud(const py::handle& cloud, const char* what) {
-    if (py::isinstance<PointCloud>(cloud)) return cloud.cast<std::shared_ptr<PointCloud>>();
-    return std::make_shared<const PointCloud>(cloud_from_points(cloud, what));
-}
-
 void bind_cloud(py::module_& m) {
     py::class_<PointCloud, std::shared_ptr<PointCloud>>(
         m, "Cloud",

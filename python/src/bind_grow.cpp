@@ -32,13 +32,13 @@ py::array_t<double> surface_rows(const Grown& g, F&& f) {
 
 }  // namespace
 
-std::shared_ptr<const PointCloud> cloud_for(const Grown& grown, const py::handle& points) {
+SharedCloud cloud_for(const Grown& grown, const py::handle& points) {
     if (points.is_none()) return grown.cloud;
-    std::shared_ptr<const PointCloud> c = shared_cloud(points);
-    if (c->size() != grown.cloud->size())
-        invalid(
-            cat({"points has ", std::to_string(c->size()), " rows but the result was grown from ",
-                 std::to_string(grown.cloud->size()), " points"}));
+    SharedCloud c = HeldCloud::hold(points, "points");
+    if (c->view().size() != grown.cloud->view().size())
+        invalid(cat({"points has ", std::to_string(c->view().size()),
+                     " rows but the result was grown from ",
+                     std::to_string(grown.cloud->view().size()), " points"}));
     return c;
 }
 
@@ -80,14 +80,15 @@ void bind_grow(py::module_& m) {
             "homes",
             [](const Grown& g) {
                 return surface_rows(
-                    g, [&](const Surface& s) { return Vec3d(s.home + g.cloud->offset); });
+                    g, [&](const Surface& s) { return Vec3d(s.home + g.cloud->view().offset); });
             },
             "(S, 3) float64: the home point each surface grew from")
         .def_property_readonly(
             "centroids",
             [](const Grown& g) {
-                return surface_rows(
-                    g, [&](const Surface& s) { return Vec3d(s.centroid + g.cloud->offset); });
+                return surface_rows(g, [&](const Surface& s) {
+                    return Vec3d(s.centroid + g.cloud->view().offset);
+                });
             },
             "(S, 3) float64: centroid of each neighbourhood; its plane passes here")
         .def_property_readonly(
@@ -95,7 +96,7 @@ void bind_grow(py::module_& m) {
             [](const Grown& g) {
                 const auto& s = g.result.surfaces;
                 return plane_rows(s.size(), [&](std::size_t i) {
-                    return std::pair{s[i].normal, Vec3d(s[i].centroid + g.cloud->offset)};
+                    return std::pair{s[i].normal, Vec3d(s[i].centroid + g.cloud->view().offset)};
                 });
             },
             "(S, 4) float64 planes (a, b, c, d): n . x + d = 0, n the unit normal")
@@ -137,8 +138,9 @@ void bind_grow(py::module_& m) {
             },
             "(S,) float64: largest distance of a member from the plane")
         .def_property_readonly(
-            "cloud", [](const Grown& g) { return std::const_pointer_cast<PointCloud>(g.cloud); },
-            "The Cloud it was grown from (shared, not copied)")
+            "cloud", [](const Grown& g) { return g.cloud->cloud(); },
+            "The Cloud it was grown from: shared when a Cloud was passed, else a Cloud copied from "
+            "the array on first use")
         .def_property_readonly(
             "parameters", [](const Grown& g) { return to_python(io::parameters_json(g.config)); },
             "Every parameter used, defaults resolved (as in surfaces.json)")
@@ -168,7 +170,8 @@ void bind_grow(py::module_& m) {
            double thickness_sigmas, double noise_sigmas, int min_new_points, double plane_tolerance,
            double adaptive_factor, bool attach_leftovers, double pool_angle_deg, double pool_radius,
            const py::object& viewpoint, const py::object& crop_box, const py::object& crop_radius,
-           const py::object& crop_center, double range_band, const py::object& progress) {
+           const py::object& crop_center, double range_band, const py::object& progress,
+           bool copy) {
             auto g = std::make_shared<Grown>();
             GrowerConfig& c = g->config;
             c.mu = mu;
@@ -188,8 +191,8 @@ void bind_grow(py::module_& m) {
             c.pool_angle_deg = pool_angle_deg;
             c.pool_radius = pool_radius;
             c.range_band = range_band;
-            g->cloud = shared_cloud(points);
-            const Vec3d& offset = g->cloud->offset;  // the library works relative to it
+            g->cloud = HeldCloud::hold(points, "points", copy);
+            const Vec3d& offset = g->cloud->view().offset;  // the library works relative to it
             if (auto v = optional_vec3(viewpoint, "viewpoint")) c.viewpoint = *v - offset;
             if (!crop_box.is_none()) {
                 const auto rows = rows3_from(crop_box, "crop_box");
@@ -208,7 +211,7 @@ void bind_grow(py::module_& m) {
             with_progress.progress = hook.function();
             const SurfaceGrower grower(with_progress);
             const auto start = std::chrono::steady_clock::now();
-            g->result = hook.run([&] { return grower.grow(*g->cloud); });
+            g->result = hook.run([&] { return grower.grow(g->cloud->view()); });
             g->call_seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             const GrowStats& st = g->result.stats;
@@ -236,13 +239,16 @@ void bind_grow(py::module_& m) {
         py::arg("pool_radius") = 0.0, py::arg("viewpoint") = py::none(),
         py::arg("crop_box") = py::none(), py::arg("crop_radius") = py::none(),
         py::arg("crop_center") = py::none(), py::arg("range_band") = 1.0,
-        py::arg("progress") = py::none(),
+        py::arg("progress") = py::none(), py::arg("copy") = false,
         "Grows surfaces over `points`: an (N, 3) float32/float64 array in the cloud's units, or "
         "a Cloud (which also carries the viewpoint or scan origins that orient normals). mu is "
         "the cube side and neighbourhood radius in those units (default 0.012: metres). Same "
         "points, parameters and seed give the same result for any thread count. The GIL is "
         "released while it runs; Ctrl-C stops it. progress: None, or a callable (stage, "
-        "fraction). Raises InvalidParameterError for a parameter out of range or a bad array.");
+        "fraction). A C-ordered float32 array is read in place, not copied, and the result keeps "
+        "a reference to it for later calls (bound_planes, occupancy): do not change it "
+        "afterwards, or pass copy=True; other arrays are converted once. Raises "
+        "InvalidParameterError for a parameter out of range or a bad array.");
 }
 
 }  // namespace surfgrow::python

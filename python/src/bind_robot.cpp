@@ -25,7 +25,7 @@ namespace {
 
 struct Planes {
     std::shared_ptr<const Grown> grown;
-    std::shared_ptr<const PointCloud> cloud;
+    SharedCloud cloud;
     BoundPlanes planes;
 };
 
@@ -35,7 +35,7 @@ struct Coverage {
 };
 
 struct Occupancy {
-    std::shared_ptr<const PointCloud> cloud;
+    SharedCloud cloud;
     OccupancyGrid grid;
     SensorOrigins origins;
 };
@@ -118,7 +118,7 @@ void bind_robot(py::module_& m) {
             [](const Planes& p) {
                 py::list faces;
                 for (const BoundPlane& b : p.planes.planes)
-                    faces.append(face_dict(b, p.cloud->offset));
+                    faces.append(face_dict(b, p.cloud->view().offset));
                 return faces;
             },
             "list of dicts: plane (a, b, c, d), normal, centroid, u_axis, v_axis, area, rms, "
@@ -136,7 +136,7 @@ void bind_robot(py::module_& m) {
             [](const Planes& p) {
                 const auto& b = p.planes.planes;
                 return plane_rows(b.size(), [&](std::size_t i) {
-                    return std::pair{b[i].normal, Vec3d(b[i].centroid + p.cloud->offset)};
+                    return std::pair{b[i].normal, Vec3d(b[i].centroid + p.cloud->view().offset)};
                 });
             },
             "(P, 4) float64 planes (a, b, c, d): n . x + d = 0")
@@ -195,7 +195,7 @@ void bind_robot(py::module_& m) {
             c.simplify_tolerance = simplify_tolerance;
             validate(c);
             py::gil_scoped_release release;
-            p->planes = compute_bound_planes(*p->cloud, grown->result, c);
+            p->planes = compute_bound_planes(p->cloud->view(), grown->result, c);
             return p;
         },
         py::arg("result"), py::arg("points") = py::none(), py::kw_only(),
@@ -213,7 +213,7 @@ void bind_robot(py::module_& m) {
         .def_property_readonly(
             "positions",
             [](const Coverage& c) {
-                const Vec3d o = c.planes->cloud->offset;
+                const Vec3d o = c.planes->cloud->view().offset;
                 return rows3(c.plan.goals.size(),
                              [&](std::size_t i) { return Vec3d(c.plan.goals[i].position + o); });
             },
@@ -228,7 +228,7 @@ void bind_robot(py::module_& m) {
         .def_property_readonly(
             "tool_positions",
             [](const Coverage& c) {
-                const Vec3d o = c.planes->cloud->offset;
+                const Vec3d o = c.planes->cloud->view().offset;
                 return rows3(c.plan.goals.size(), [&](std::size_t i) {
                     return Vec3d(c.plan.goals[i].tool_position + o);
                 });
@@ -310,7 +310,8 @@ void bind_robot(py::module_& m) {
             cfg.max_angle_deg = max_angle_deg;
             cfg.tilt_deg = tilt_deg;
             cfg.sample_spacing = sample_spacing;
-            if (auto s = optional_vec3(start, "start")) cfg.start = *s - planes->cloud->offset;
+            if (auto s = optional_vec3(start, "start"))
+                cfg.start = *s - planes->cloud->view().offset;
             cfg.threads = planes->grown->config.threads;
             validate(cfg);
             py::gil_scoped_release release;
@@ -348,7 +349,7 @@ void bind_robot(py::module_& m) {
             [](const Occupancy& o) {
                 const auto cells = o.grid.cells();
                 return rows3(cells.size(), [&](std::size_t i) {
-                    return Vec3d(o.grid.centre(cells[i]) + o.cloud->offset);
+                    return Vec3d(o.grid.centre(cells[i]) + o.cloud->view().offset);
                 });
             },
             "(K, 3) float64 cube centres")
@@ -365,14 +366,16 @@ void bind_robot(py::module_& m) {
             "the side: mu (1 + 2^-20)")
         .def_property_readonly(
             "origin",
-            [](const Occupancy& o) { return vec3_array(Vec3d(o.grid.origin() + o.cloud->offset)); },
+            [](const Occupancy& o) {
+                return vec3_array(Vec3d(o.grid.origin() + o.cloud->view().offset));
+            },
             "(3,) low corner of cube (0, 0, 0)")
         .def(
             "occupied",
             [](const Occupancy& o, const py::object& points) {
                 const auto d = doubles_2d(points, "points", 3);
                 const auto r = d.unchecked<2>();
-                const Vec3d off = o.cloud->offset;
+                const Vec3d off = o.cloud->view().offset;
                 return column<bool>(static_cast<std::size_t>(d.shape(0)), [&](std::size_t i) {
                     const auto row = static_cast<py::ssize_t>(i);
                     return o.grid.occupied(Vec3d(r(row, 0), r(row, 1), r(row, 2)) - off);
@@ -386,7 +389,7 @@ void bind_robot(py::module_& m) {
                 {
                     py::gil_scoped_release release;
                     io::write_atomically(path, [&](std::ostream& out) {
-                        s = io::write_octomap_bt(out, o.grid, *o.cloud, {}, o.origins);
+                        s = io::write_octomap_bt(out, o.grid, o.cloud->view(), {}, o.origins);
                     });
                 }
                 py::dict d;
@@ -406,34 +409,18 @@ void bind_robot(py::module_& m) {
         [](std::shared_ptr<const Grown> grown, const py::object& points,
            const py::object& origins) {
             auto o = std::make_shared<Occupancy>();
-            auto cloud = cloud_for(*grown, points);
+            SharedCloud cloud = cloud_for(*grown, points);
             if (!origins.is_none()) {
                 std::vector<Vec3d> rows = rows3_from(origins, "origins");
-                for (Vec3d& r : rows) r -= cloud->offset;
-                auto c = std::make_shared<PointCloud>(*cloud);
-                if (rows.size() == 1) {
-                    c->viewpoint = rows[0];
-                    c->scan_index.clear();
-                    c->scan_origins.clear();
-                } else {
-                    if (!c->has_scan_index())
-                        invalid(
-                            "several origins need a cloud with scan_index (the scan of each "
-                            "point): pass a Cloud, or one origin");
-                    if (rows.size() != c->scan_origins.size())
-                        invalid(cat({"origins has ", std::to_string(rows.size()),
-                                     " rows for a cloud of ",
-                                     std::to_string(c->scan_origins.size()), " scans"}));
-                    c->scan_origins = std::move(rows);
-                }
-                cloud = std::move(c);
+                for (Vec3d& r : rows) r -= cloud->view().offset;
+                cloud = HeldCloud::with_origins(std::move(cloud), std::move(rows));
             }
             o->cloud = cloud;
             GrowerConfig cfg = grown->config;
             if (!origins.is_none()) cfg.viewpoint.reset();
-            o->origins = sensor_origins(*cloud, cfg);
+            o->origins = sensor_origins(cloud->view(), cfg);
             py::gil_scoped_release release;
-            o->grid = occupancy_grid(*cloud, grown->result, cfg);
+            o->grid = occupancy_grid(cloud->view(), grown->result, cfg);
             return o;
         },
         py::arg("result"), py::arg("points") = py::none(), py::kw_only(),
@@ -450,7 +437,7 @@ void bind_robot(py::module_& m) {
         .def(py::init([](std::shared_ptr<const Grown> grown) {
                  auto c = std::make_shared<Collision>();
                  c->env = CollisionSpheres::from_surfaces(grown->result.surfaces);
-                 c->offset = grown->cloud->offset;
+                 c->offset = grown->cloud->view().offset;
                  return c;
              }),
              py::arg("result"), "One sphere per surface of a GrowResult (sphere id = surface id).")

@@ -155,10 +155,10 @@ void bind_scan(py::module_& m) {
         "evaluate",
         [](std::shared_ptr<const Grown> grown, std::shared_ptr<const Truth> truth, double workspace,
            double band) {
-            if (truth->cloud->size() != grown->cloud->size())
+            if (truth->cloud->size() != grown->cloud->view().size())
                 invalid(cat({"the truth is of ", std::to_string(truth->cloud->size()),
                              " points but the result was grown from ",
-                             std::to_string(grown->cloud->size())}));
+                             std::to_string(grown->cloud->view().size())}));
             eval::EvalOptions o;
             o.workspace_m = workspace;
             o.band_m = band;

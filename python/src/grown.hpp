@@ -7,14 +7,14 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "held_cloud.hpp"
 #include "surfgrow/core/grow_result.hpp"
 #include "surfgrow/core/grower_config.hpp"
-#include "surfgrow/core/point_cloud.hpp"
 
 namespace surfgrow::python {
 
 struct Grown {
-    std::shared_ptr<const PointCloud> cloud;
+    SharedCloud cloud;    // read in place when it was a float32 array (HeldCloud)
     GrowerConfig config;  // without its progress callback
     GrowResult result;
     double call_seconds = 0.0;  // the library call, GIL released: what C++ would take
@@ -22,8 +22,7 @@ struct Grown {
 
 /// The cloud a later stage works on: `points` when given (an array or a Cloud of the same point
 /// count), else the grown one.
-[[nodiscard]] std::shared_ptr<const PointCloud> cloud_for(const Grown& grown,
-                                                          const pybind11::handle& points);
+[[nodiscard]] SharedCloud cloud_for(const Grown& grown, const pybind11::handle& points);
 
 /// JSON (the library's report formats) as Python dicts and lists.
 [[nodiscard]] pybind11::object to_python(const nlohmann::json& j);

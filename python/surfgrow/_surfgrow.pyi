@@ -102,8 +102,12 @@ def grow(points: Union[ArrayLike, Cloud], mu: float = 0.012, min_pts: int = 10, 
          attach_leftovers: bool = True, pool_angle_deg: float = 15.0, pool_radius: float = 0.0,
          viewpoint: Optional[ArrayLike] = None, crop_box: Optional[ArrayLike] = None,
          crop_radius: Optional[float] = None, crop_center: Optional[ArrayLike] = None,
-         range_band: float = 1.0, progress: Progress = None) -> GrowResult:
-    """Grows surfaces over (N, 3) points (cloud units; mu 0.012 = 12 mm in metres)."""
+         range_band: float = 1.0, progress: Progress = None, copy: bool = False) -> GrowResult:
+    """Grows surfaces over (N, 3) points (cloud units; mu 0.012 = 12 mm in metres).
+
+    A C-ordered float32 array is read in place and the result keeps a reference to it (later
+    calls on the result read it again): do not change it afterwards, or pass copy=True. Other
+    dtypes and layouts are converted once."""
 
 class BoundPlanes:
     """Structural faces: neighbouring coplanar surfaces merged (P faces)."""

@@ -109,6 +109,46 @@ TEST(Pipeline, SameResultForAnyThreadCount) {
     expect_same_grid(*a.occupancy, *b.occupancy);
 }
 
+// A caller whose points live in its own buffer (a sensor driver's, a numpy array's) runs the
+// pipeline on a view of them: the same result as on a PointCloud copy, nothing copied in.
+TEST(Pipeline, ReadsACloudViewOfTheCallersOwnBuffers) {
+    const PointCloud cloud = scene_cloud();
+    struct DriverFrame {  // not a PointCloud: the caller's own layout
+        std::vector<float> xyz;
+        std::vector<std::uint32_t> scan;
+        std::vector<Vec3d> origins;
+    } frame;
+    for (const Vec3f& p : cloud.points) frame.xyz.insert(frame.xyz.end(), {p.x(), p.y(), p.z()});
+    frame.scan.assign(cloud.size(), 0);
+    frame.origins = {*cloud.viewpoint};
+    static_assert(sizeof(Vec3f) == 3 * sizeof(float));
+
+    CloudView view(
+        std::span<const Vec3f>(reinterpret_cast<const Vec3f*>(frame.xyz.data()), cloud.size()));
+    view.scan_index = frame.scan;
+    view.scan_origins = frame.origins;
+    PointCloud fused = cloud;  // the same scan as a one-scan fused cloud
+    fused.viewpoint.reset();
+    fused.scan_index = frame.scan;
+    fused.scan_origins = frame.origins;
+
+    const PipelineResult a = run_pipeline(view);
+    const PipelineResult b = run_pipeline(fused);
+    ASSERT_GT(a.grow.surfaces.size(), 50u);
+    EXPECT_EQ(a.grow.stats.orientation, OrientationSource::kScanOrigins);
+    expect_same_surfaces(a.grow, b.grow);
+    ASSERT_EQ(a.planes->planes.size(), b.planes->planes.size());
+    expect_same_coverage(*a.coverage, *b.coverage);
+    expect_same_grid(*a.occupancy, *b.occupancy);
+    // And the copy to_point_cloud makes of the view is the cloud it shows.
+    const PointCloud copy = to_point_cloud(view);
+    ASSERT_EQ(copy.size(), fused.size());  // bytes: the cloud holds a NaN point
+    EXPECT_EQ(std::memcmp(copy.points.data(), fused.points.data(), fused.size() * sizeof(Vec3f)),
+              0);
+    EXPECT_EQ(copy.scan_index, fused.scan_index);
+    EXPECT_EQ(copy.scan_origins, fused.scan_origins);
+}
+
 TEST(Pipeline, StagesNotAskedForAreEmpty) {
     const PointCloud cloud = scene_cloud();
     PipelineConfig config;

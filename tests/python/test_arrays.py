@@ -1,6 +1,9 @@
 """Every kind of array a user may pass: the same result where the points are the same, a clear
 surfgrow.InvalidParameterError (also a ValueError) otherwise, never a crash."""
 
+import gc
+import sys
+
 import numpy as np
 import pytest
 
@@ -32,6 +35,56 @@ def same(r, ref):
 ], ids=["float64", "fortran", "copy", "strided", "column-slice", "big-endian", "list"])
 def test_layouts_give_the_same_result(make, pts, reference, corner):
     r = surfgrow.grow(make(pts), viewpoint=corner.cloud.scan_origins[0])
+    assert same(r, reference)
+
+
+def test_float32_is_read_in_place(pts, reference, corner):
+    """A C-ordered float32 array is not copied: the result holds the array itself (one more
+    reference while it lives) and later calls read it again, so a change after grow shows in
+    bound_planes. copy=True makes a private copy that a change does not reach."""
+    vp = corner.cloud.scan_origins[0]
+    mine = pts.copy()
+    refs = sys.getrefcount(mine)
+    shared = surfgrow.grow(mine, viewpoint=vp)
+    private = surfgrow.grow(mine, viewpoint=vp, copy=True)
+    assert sys.getrefcount(mine) == refs + 1  # held by `shared` only
+    assert same(shared, reference) and same(private, reference)
+    def centroids(r):
+        return np.array([f["centroid"] for f in surfgrow.bound_planes(r).faces])
+
+    before = centroids(shared)
+    assert np.array_equal(centroids(private), before)
+    mine[:, 0] += 5.0  # the caller reuses its buffer: `shared`'s points are now 5 m off
+    assert np.mean(centroids(shared)[:, 0]) > np.mean(before[:, 0]) + 4.0
+    assert np.array_equal(centroids(private), before)
+    del shared
+    assert sys.getrefcount(mine) == refs
+
+
+@pytest.mark.parametrize("make", [
+    lambda p: p.astype(np.float64),
+    lambda p: p[::-1][::-1],  # a view, still C-ordered: read in place
+    lambda p: np.asfortranarray(p),
+], ids=["float64", "view", "fortran"])
+def test_what_is_held_lives_as_long_as_the_result(make, pts, reference, corner):
+    """Whatever was passed (converted or held) stays valid after the caller drops it."""
+    r = surfgrow.grow(make(pts.copy()), viewpoint=corner.cloud.scan_origins[0])
+    gc.collect()
+    assert same(r, reference)
+    planes = surfgrow.bound_planes(r)
+    assert len(planes) >= 3
+    assert len(r.cloud) == len(pts) and np.array_equal(r.cloud.points, pts)
+
+
+def test_misaligned_float32_is_copied(pts, reference, corner):
+    """float32 rows at an odd address (a byte buffer's slice) are copied, not read unaligned."""
+    raw = np.zeros(pts.nbytes + 1, np.uint8)
+    odd = raw[1:].view(np.float32).reshape(-1, 3)
+    odd[:] = pts
+    assert not odd.flags.aligned
+    refs = sys.getrefcount(odd)
+    r = surfgrow.grow(odd, viewpoint=corner.cloud.scan_origins[0])
+    assert sys.getrefcount(odd) == refs
     assert same(r, reference)
 
 

@@ -2,14 +2,14 @@
 
 namespace surfgrow {
 
-Vec3d crop_centre(const PointCloud& cloud, const GrowerConfig& config) {
+Vec3d crop_centre(const CloudView& cloud, const GrowerConfig& config) {
     if (config.crop.center) return *config.crop.center;
     if (config.viewpoint) return *config.viewpoint;
     if (cloud.viewpoint) return *cloud.viewpoint;
     return Vec3d(-cloud.offset);
 }
 
-WorkspaceMask workspace_mask(const PointCloud& cloud, const GrowerConfig& config) {
+WorkspaceMask workspace_mask(const CloudView& cloud, const GrowerConfig& config) {
     WorkspaceMask mask;
     const WorkspaceCrop& crop = config.crop;
     if (!crop.active()) return mask;
@@ -30,7 +30,7 @@ WorkspaceMask workspace_mask(const PointCloud& cloud, const GrowerConfig& config
     return mask;
 }
 
-std::vector<std::uint8_t> grown_point_mask(const PointCloud& cloud, const GrowerConfig& config) {
+std::vector<std::uint8_t> grown_point_mask(const CloudView& cloud, const GrowerConfig& config) {
     WorkspaceMask mask = workspace_mask(cloud, config);
     if (config.crop.active()) return std::move(mask.inside);
     std::vector<std::uint8_t> finite(cloud.size(), 0);

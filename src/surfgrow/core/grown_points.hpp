@@ -5,15 +5,15 @@
 #include <cstdint>
 #include <vector>
 
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/core/geometry.hpp"
 #include "surfgrow/core/grower_config.hpp"
-#include "surfgrow/core/point_cloud.hpp"
 
 namespace surfgrow {
 
 /// The centre of the radius crop: the crop's own, else the viewpoint (the config's, then the
 /// cloud's), else the origin of the cloud's file frame.
-[[nodiscard]] Vec3d crop_centre(const PointCloud& cloud, const GrowerConfig& config);
+[[nodiscard]] Vec3d crop_centre(const CloudView& cloud, const GrowerConfig& config);
 
 /// The points inside the workspace crop.
 struct WorkspaceMask {
@@ -24,11 +24,11 @@ struct WorkspaceMask {
 };
 
 /// The workspace mask of `cloud` for `config.crop`.
-[[nodiscard]] WorkspaceMask workspace_mask(const PointCloud& cloud, const GrowerConfig& config);
+[[nodiscard]] WorkspaceMask workspace_mask(const CloudView& cloud, const GrowerConfig& config);
 
 /// The points the grower indexes for `config`: finite and inside the workspace crop (1), others
 /// (0); one entry per point, crop or not.
-[[nodiscard]] std::vector<std::uint8_t> grown_point_mask(const PointCloud& cloud,
+[[nodiscard]] std::vector<std::uint8_t> grown_point_mask(const CloudView& cloud,
                                                          const GrowerConfig& config);
 
 }  // namespace surfgrow

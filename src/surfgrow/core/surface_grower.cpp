@@ -774,7 +774,7 @@ struct Orientation {
     [[nodiscard]] bool range_known() const { return source != OrientationSource::kUp; }
 };
 
-Orientation choose_orientation(const PointCloud& cloud, const GrowerConfig& cfg, const Aabb& box) {
+Orientation choose_orientation(const CloudView& cloud, const GrowerConfig& cfg, const Aabb& box) {
     if (cloud.has_scan_index() && !cloud.scan_origins.empty())
         return {OrientationSource::kScanOrigins, Vec3d::Zero()};  // no single origin
     if (cfg.viewpoint) return {OrientationSource::kViewpoint, *cfg.viewpoint};
@@ -797,7 +797,7 @@ Orientation choose_orientation(const PointCloud& cloud, const GrowerConfig& cfg,
 using ProgressReport = std::function<void(std::string_view, double)>;
 
 /// Where the sensor stood for each point, from the chosen orientation.
-SensorSight sight_of(const PointCloud& cloud, const Orientation& orient, const CubeIndex& index) {
+SensorSight sight_of(const CloudView& cloud, const Orientation& orient, const CubeIndex& index) {
     SensorSight sight;
     if (orient.source == OrientationSource::kScanOrigins) {
         for (const Vec3d& o : cloud.scan_origins) sight.origins.push_back(index.to_local(o));
@@ -1039,7 +1039,7 @@ constexpr std::int32_t kNotIndexed = -2;
 
 /// Stage 4b: registration by range band, over the input in its order (integer counts: any split
 /// of the work gives the same totals); the not-indexed mark becomes the unregistered label.
-std::vector<RangeBand> range_bands(const PointCloud& cloud, const Orientation& orient,
+std::vector<RangeBand> range_bands(const CloudView& cloud, const Orientation& orient,
                                    double band_width, int threads,
                                    std::span<std::int32_t> input_labels) {
     const bool range_known = orient.range_known();
@@ -1102,7 +1102,7 @@ std::vector<RangeBand> range_bands(const PointCloud& cloud, const Orientation& o
 /// frame origin that sees a surface edge-on (its plane passes near the origin: a map-frame
 /// cloud's floor) says nothing about its side: that surface faces +z instead.
 /// Returns the members of those surfaces.
-std::uint64_t orient_normals(const PointCloud& cloud, const Orientation& orient,
+std::uint64_t orient_normals(const CloudView& cloud, const Orientation& orient,
                              std::span<const std::uint32_t> original,
                              std::span<const std::uint32_t> home_of, double max_incidence_deg,
                              int threads, std::vector<Surface>& surfaces) {
@@ -1167,7 +1167,7 @@ std::uint64_t drop_empty_surfaces(int threads, std::vector<Surface>& surfaces,
 /// neighbours apart (1e-300 m once reached the index as billions of cubes): a wrong unit or a
 /// typo, refused as the mu beyond the whole cloud is. Where some points resolve it (a cloud far
 /// larger than mu around the origin), growing there still means something and is left alone.
-void refuse_mu_below_resolution(const PointCloud& cloud, const WorkspaceMask& workspace, double mu,
+void refuse_mu_below_resolution(const CloudView& cloud, const WorkspaceMask& workspace, double mu,
                                 int threads) {
     float nearest = std::numeric_limits<float>::infinity();  // the smallest largest |coordinate|
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(min : nearest)
@@ -1196,7 +1196,7 @@ SurfaceGrower::SurfaceGrower(GrowerConfig config) : config_(std::move(config)) {
     validate(config_);
 }
 
-GrowIndex SurfaceGrower::index(const PointCloud& cloud) const {
+GrowIndex SurfaceGrower::index(const CloudView& cloud) const {
     Stopwatch watch;
     WorkspaceMask workspace = workspace_mask(cloud, config_);
     refuse_mu_below_resolution(cloud, workspace, config_.mu, resolve_threads(config_.threads));
@@ -1220,11 +1220,11 @@ GrowIndex SurfaceGrower::index(const PointCloud& cloud) const {
     return g;
 }
 
-GrowResult SurfaceGrower::grow(const PointCloud& cloud) const {
+GrowResult SurfaceGrower::grow(const CloudView& cloud) const {
     return grow(cloud, index(cloud));
 }
 
-GrowResult SurfaceGrower::grow(const PointCloud& cloud, const GrowIndex& grow_index) const {
+GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_index) const {
     const GrowerConfig& cfg = config_;
     const int threads = resolve_threads(cfg.threads);
     GrowResult result;

@@ -3,10 +3,10 @@
 
 #include <cstdint>
 
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/grow_result.hpp"
 #include "surfgrow/core/grower_config.hpp"
-#include "surfgrow/core/point_cloud.hpp"
 
 namespace surfgrow {
 
@@ -39,21 +39,21 @@ class SurfaceGrower {
     [[nodiscard]] const GrowerConfig& config() const { return config_; }
 
     /// Grows surfaces over `cloud`. An empty cloud (or one with no valid point) gives no surfaces.
-    [[nodiscard]] GrowResult grow(const PointCloud& cloud) const;
+    [[nodiscard]] GrowResult grow(const CloudView& cloud) const;
 
     /// The cube index of `cloud` for this configuration.
-    [[nodiscard]] GrowIndex index(const PointCloud& cloud) const;
+    [[nodiscard]] GrowIndex index(const CloudView& cloud) const;
     /// Grows surfaces over `cloud` through `index`, which index(cloud) built from the same cloud
     /// with the same configuration; same result as grow(cloud). Throws Error(kInvalidParameter)
     /// when the index is of a cloud of another size.
-    [[nodiscard]] GrowResult grow(const PointCloud& cloud, const GrowIndex& index) const;
+    [[nodiscard]] GrowResult grow(const CloudView& cloud, const GrowIndex& index) const;
 
   private:
     GrowerConfig config_;
 };
 
 /// One-call helper: SurfaceGrower(config).grow(cloud).
-[[nodiscard]] inline GrowResult grow_surfaces(const PointCloud& cloud,
+[[nodiscard]] inline GrowResult grow_surfaces(const CloudView& cloud,
                                               const GrowerConfig& config = {}) {
     return SurfaceGrower(config).grow(cloud);
 }

@@ -21,7 +21,7 @@ constexpr std::size_t kMaxBands = 64;  // the last one is open-ended
     throw Error(ErrorCode::kInvalidParameter, message);
 }
 
-void check_inputs(const PointCloud& cloud, const GrowOutcome& grown,
+void check_inputs(const CloudView& cloud, const GrowOutcome& grown,
                   std::span<const scanner::Face> faces, const EvalOptions& o) {
     if (!(o.workspace_m > 0) || !(o.band_m > 0) || !std::isfinite(o.workspace_m) ||
         !std::isfinite(o.band_m))
@@ -53,7 +53,7 @@ void check_inputs(const PointCloud& cloud, const GrowOutcome& grown,
 }
 
 // Where point i was seen from: its own scan's origin, or the cloud's viewpoint.
-std::optional<Vec3d> origin_of(const PointCloud& cloud, std::size_t i) {
+std::optional<Vec3d> origin_of(const CloudView& cloud, std::size_t i) {
     if (cloud.has_scan_index() && cloud.scan_index[i] < cloud.scan_origins.size())
         return cloud.scan_origins[cloud.scan_index[i]];
     if (cloud.viewpoint) return *cloud.viewpoint;
@@ -97,7 +97,7 @@ double Share::fraction() const {
     return points ? static_cast<double>(registered) / static_cast<double>(points) : kNaN;
 }
 
-EvalReport evaluate(const PointCloud& cloud, const GrowOutcome& grown,
+EvalReport evaluate(const CloudView& cloud, const GrowOutcome& grown,
                     std::span<const scanner::Face> faces, const EvalOptions& options) {
     check_inputs(cloud, grown, faces, options);
     EvalReport r;
@@ -283,7 +283,7 @@ EvalReport evaluate(const PointCloud& cloud, const GrowOutcome& grown,
     return r;
 }
 
-EvalReport evaluate(const PointCloud& cloud, const GrowResult& result,
+EvalReport evaluate(const CloudView& cloud, const GrowResult& result,
                     std::span<const scanner::Face> faces, const EvalOptions& options) {
     return evaluate(cloud, GrowOutcome{result.surfaces, result.labels, &result.stats}, faces,
                     options);

@@ -5,8 +5,8 @@
 #include <span>
 #include <vector>
 
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/core/grow_result.hpp"
-#include "surfgrow/core/point_cloud.hpp"
 #include "surfgrow/core/surface.hpp"
 #include "surfgrow/eval/distribution.hpp"
 #include "surfgrow/scanner/primitives.hpp"
@@ -147,7 +147,7 @@ struct EvalReport {
 /// Throws Error(kInvalidParameter) when the inputs do not belong together: no truth labels, a
 /// label count other than the point count, a truth id beyond `faces`, a surface id beyond
 /// `grown.surfaces`, or options out of range.
-[[nodiscard]] EvalReport evaluate(const PointCloud& cloud, const GrowOutcome& grown,
+[[nodiscard]] EvalReport evaluate(const CloudView& cloud, const GrowOutcome& grown,
                                   std::span<const scanner::Face> faces,
                                   const EvalOptions& options = {});
 
@@ -155,7 +155,7 @@ struct EvalReport {
 [[nodiscard]] double share_above(std::span<const double> values, double threshold);
 
 /// The same, for a GrowResult held in memory.
-[[nodiscard]] EvalReport evaluate(const PointCloud& cloud, const GrowResult& result,
+[[nodiscard]] EvalReport evaluate(const CloudView& cloud, const GrowResult& result,
                                   std::span<const scanner::Face> faces,
                                   const EvalOptions& options = {});
 

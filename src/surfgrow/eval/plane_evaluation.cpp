@@ -17,7 +17,7 @@ std::vector<Surface> surfaces_through_planes(std::span<const Surface> surfaces,
     return out;
 }
 
-void add_plane_figures(EvalReport& report, const PointCloud& cloud, const GrowOutcome& grown,
+void add_plane_figures(EvalReport& report, const CloudView& cloud, const GrowOutcome& grown,
                        const BoundPlanes& planes, std::span<const scanner::Face> faces) {
     const std::vector<Surface> through = surfaces_through_planes(grown.surfaces, planes);
     const EvalReport p =

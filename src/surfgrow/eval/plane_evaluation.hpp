@@ -18,7 +18,7 @@ namespace surfgrow::eval {
 
 /// Fills report.planes: the normal figures through the bound planes, and the faces detected.
 /// `grown` is what `report` evaluated.
-void add_plane_figures(EvalReport& report, const PointCloud& cloud, const GrowOutcome& grown,
+void add_plane_figures(EvalReport& report, const CloudView& cloud, const GrowOutcome& grown,
                        const BoundPlanes& planes, std::span<const scanner::Face> faces);
 
 }  // namespace surfgrow::eval

@@ -119,7 +119,7 @@ PointCloud read_cloud(const fs::path& path, const ReadOptions& options) {
     return read_cloud(file.view(), *format, source, options);
 }
 
-void write_cloud(const fs::path& path, const PointCloud& cloud, const WriteOptions& options) {
+void write_cloud(const fs::path& path, const CloudView& cloud, const WriteOptions& options) {
     const std::optional<CloudFormat> format =
         options.format ? options.format : format_from_extension(path);
     if (!format) {

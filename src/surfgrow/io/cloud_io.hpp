@@ -5,7 +5,7 @@
 #include <optional>
 #include <string_view>
 
-#include "surfgrow/core/point_cloud.hpp"
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/io/cloud_options.hpp"
 
 namespace surfgrow::io {
@@ -39,7 +39,7 @@ namespace surfgrow::io {
 /// Throws Error(kUnknownFormat) for an unknown extension without options.format,
 /// Error(kInvalidParameter) for normals that are not one per point (nothing is written, `path`
 /// keeps its old content), Error(kCannotWrite) when the file cannot be written.
-void write_cloud(const std::filesystem::path& path, const PointCloud& cloud,
+void write_cloud(const std::filesystem::path& path, const CloudView& cloud,
                  const WriteOptions& options = {});
 
 }  // namespace surfgrow::io

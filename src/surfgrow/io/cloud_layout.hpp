@@ -2,8 +2,8 @@
 // labels or not.
 #pragma once
 
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/core/error.hpp"
-#include "surfgrow/core/point_cloud.hpp"
 #include "surfgrow/core/text.hpp"
 
 namespace surfgrow::io {
@@ -18,7 +18,7 @@ struct CloudLayout {
 /// and labels when asked for and present. Labels of the wrong length are a bug in the caller;
 /// normals of the wrong length (set by a user, e.g. from Python) are refused with
 /// Error(kInvalidParameter), whether or not they are asked for, before anything is written.
-[[nodiscard]] inline CloudLayout layout_for(const PointCloud& cloud, bool want_labels,
+[[nodiscard]] inline CloudLayout layout_for(const CloudView& cloud, bool want_labels,
                                             bool want_normals) {
     if (!cloud.labels.empty() && cloud.labels.size() != cloud.points.size()) {
         throw Error(ErrorCode::kInternal,
@@ -36,7 +36,7 @@ struct CloudLayout {
 }
 
 /// Point i in file coordinates (offset added back).
-[[nodiscard]] inline Vec3d absolute_point(const PointCloud& cloud, std::size_t i) {
+[[nodiscard]] inline Vec3d absolute_point(const CloudView& cloud, std::size_t i) {
     return cloud.points[i].cast<double>() + cloud.offset;
 }
 

@@ -142,7 +142,7 @@ class LeafSet {
 }  // namespace
 
 OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
-                                const PointCloud& cloud, std::span<const std::uint8_t> ray_mask,
+                                const CloudView& cloud, std::span<const std::uint8_t> ray_mask,
                                 const SensorOrigins& origins) {
     if (!(grid.mu() > 0))
         throw Error(ErrorCode::kInvalidParameter,

@@ -5,7 +5,7 @@
 #include <ostream>
 #include <span>
 
-#include "surfgrow/core/point_cloud.hpp"
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/robot/occupancy_grid.hpp"
 #include "surfgrow/robot/sensor_origins.hpp"
 
@@ -43,7 +43,7 @@ struct OctomapSummary {
 /// leaves, 393 m at 12 mm, each way from the frame origin) and Error(kCannotWrite) if the stream
 /// fails. Deterministic: the same bytes for the same input.
 OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
-                                const PointCloud& cloud, std::span<const std::uint8_t> ray_mask,
+                                const CloudView& cloud, std::span<const std::uint8_t> ray_mask,
                                 const SensorOrigins& origins);
 
 }  // namespace surfgrow::io

@@ -4,7 +4,7 @@
 #include <ostream>
 #include <string_view>
 
-#include "surfgrow/core/point_cloud.hpp"
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/io/cloud_options.hpp"
 
 namespace surfgrow::io {
@@ -25,7 +25,7 @@ namespace surfgrow::io {
 /// WIDTH = POINTS, HEIGHT 1; VIEWPOINT from cloud.viewpoint (identity rotation). Throws
 /// Error(kCannotWrite) when a binary_compressed body would exceed the format's 4 GiB limit, and
 /// Error(kInvalidParameter), writing nothing, when the cloud's normals are not one per point.
-void write_pcd(std::ostream& out, const PointCloud& cloud,
+void write_pcd(std::ostream& out, const CloudView& cloud,
                PcdEncoding encoding = PcdEncoding::kBinary, bool write_labels = true,
                bool write_normals = true);
 

@@ -17,7 +17,7 @@ namespace surfgrow::io {
 
 namespace {
 
-void write_header(OutputBuffer& buf, const PointCloud& cloud, const CloudLayout& layout,
+void write_header(OutputBuffer& buf, const CloudView& cloud, const CloudLayout& layout,
                   PcdEncoding encoding) {
     const std::string n = std::to_string(cloud.size());
     const std::string_view c = layout.doubles ? "8" : "4";
@@ -44,7 +44,7 @@ void write_header(OutputBuffer& buf, const PointCloud& cloud, const CloudLayout&
     buf.append(cat({"POINTS ", n, "\nDATA ", to_string(encoding), "\n"}));
 }
 
-void write_ascii(OutputBuffer& buf, const PointCloud& cloud, const CloudLayout& layout) {
+void write_ascii(OutputBuffer& buf, const CloudView& cloud, const CloudLayout& layout) {
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         for (int a = 0; a < 3; ++a) {
             if (a > 0) buf.put(' ');
@@ -71,7 +71,7 @@ void write_ascii(OutputBuffer& buf, const PointCloud& cloud, const CloudLayout& 
 // PCD binary data is little-endian (PCL writes the host's order, little-endian in practice).
 constexpr bool kSwap = !kHostIsLittleEndian;
 
-void write_binary(OutputBuffer& buf, const PointCloud& cloud, const CloudLayout& layout) {
+void write_binary(OutputBuffer& buf, const CloudView& cloud, const CloudLayout& layout) {
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         if (layout.doubles) {
             const Vec3d p = absolute_point(cloud, i);
@@ -93,7 +93,7 @@ char* put_raw(char* out, T v) {
     return out + sizeof v;
 }
 
-void write_compressed(OutputBuffer& buf, const PointCloud& cloud, const CloudLayout& layout) {
+void write_compressed(OutputBuffer& buf, const CloudView& cloud, const CloudLayout& layout) {
     // Each field's values one after another (x x x ... y y y ...) compress far better.
     const std::size_t n = cloud.size();
     const std::size_t value = layout.doubles ? 8 : 4;
@@ -138,7 +138,7 @@ void write_compressed(OutputBuffer& buf, const PointCloud& cloud, const CloudLay
 
 }  // namespace
 
-void write_pcd(std::ostream& out, const PointCloud& cloud, PcdEncoding encoding, bool write_labels,
+void write_pcd(std::ostream& out, const CloudView& cloud, PcdEncoding encoding, bool write_labels,
                bool write_normals) {
     const CloudLayout layout = layout_for(cloud, write_labels, write_normals);
     OutputBuffer buf(out);

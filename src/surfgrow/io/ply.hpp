@@ -5,7 +5,7 @@
 #include <ostream>
 #include <string_view>
 
-#include "surfgrow/core/point_cloud.hpp"
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/io/cloud_options.hpp"
 
 namespace surfgrow::io {
@@ -30,7 +30,7 @@ namespace surfgrow::io {
 /// "comment surfgrow scan_origin k x y z" line per scan (file coordinates, shortest round-trip
 /// form) when the cloud has a scan index. Throws Error(kInvalidParameter), writing nothing, when
 /// the cloud's normals are not one per point.
-void write_ply(std::ostream& out, const PointCloud& cloud,
+void write_ply(std::ostream& out, const CloudView& cloud,
                PlyEncoding encoding = PlyEncoding::kBinaryLittleEndian, bool write_labels = true,
                bool write_scans = false, bool write_normals = true);
 

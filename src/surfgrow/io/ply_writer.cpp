@@ -9,7 +9,7 @@ namespace surfgrow::io {
 namespace {
 
 // Whether to write the scan index; a scan index beyond the origins is a bug in the caller.
-bool scans_to_write(const PointCloud& cloud, bool write_scans) {
+bool scans_to_write(const CloudView& cloud, bool write_scans) {
     if (!write_scans || !cloud.has_scan_index() || cloud.scan_origins.empty()) return false;
     for (const std::uint32_t k : cloud.scan_index) {
         if (k >= cloud.scan_origins.size())
@@ -22,7 +22,7 @@ bool scans_to_write(const PointCloud& cloud, bool write_scans) {
 
 }  // namespace
 
-void write_ply(std::ostream& out, const PointCloud& cloud, PlyEncoding encoding, bool write_labels,
+void write_ply(std::ostream& out, const CloudView& cloud, PlyEncoding encoding, bool write_labels,
                bool write_scans, bool write_normals) {
     const CloudLayout layout = layout_for(cloud, write_labels, write_normals);
     const bool scans = scans_to_write(cloud, write_scans);

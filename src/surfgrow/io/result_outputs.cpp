@@ -34,7 +34,7 @@ bool is_result_file(std::string_view file_name) {
     return false;
 }
 
-OccupancySummary stage_result(OutputTransaction& tx, const PointCloud& cloud,
+OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,
                               const PipelineConfig& config, const PipelineResult& result,
                               const ResultMeta& meta, const ResultFiles& files) {
     const GrowResult& r = result.grow;
@@ -75,7 +75,7 @@ void stage_coverage(OutputTransaction& tx, const CoveragePlan& plan, const Resul
 }
 
 OccupancySummary stage_occupancy(OutputTransaction& tx, const OccupancyGrid& grid,
-                                 const PointCloud& cloud, const GrowerConfig& config,
+                                 const CloudView& cloud, const GrowerConfig& config,
                                  const ResultMeta& meta, const OccupancyOutputs& which) {
     OccupancySummary summary;
     summary.occupied_cubes = grid.size();

@@ -6,9 +6,9 @@
 #include <span>
 #include <string_view>
 
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/core/grow_result.hpp"
 #include "surfgrow/core/grower_config.hpp"
-#include "surfgrow/core/point_cloud.hpp"
 #include "surfgrow/io/atomic_output.hpp"
 #include "surfgrow/io/octomap_export.hpp"
 #include "surfgrow/io/results_io.hpp"
@@ -52,7 +52,7 @@ struct OccupancySummary {
 /// surfaces.json and, as `files` and the result have them, labels.txt, surfaces.csv, planes.*,
 /// coverage.*, occupancy.*, environment.bt, collision_spheres.json. Returns what the occupancy
 /// outputs found (zero when there is no grid).
-OccupancySummary stage_result(OutputTransaction& tx, const PointCloud& cloud,
+OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,
                               const PipelineConfig& config, const PipelineResult& result,
                               const ResultMeta& meta, const ResultFiles& files = {});
 
@@ -70,7 +70,7 @@ void stage_coverage(OutputTransaction& tx, const CoveragePlan& plan, const Resul
 /// occupancy files `which` leaves out (they described another grid). Throws what
 /// write_octomap_bt() throws.
 OccupancySummary stage_occupancy(OutputTransaction& tx, const OccupancyGrid& grid,
-                                 const PointCloud& cloud, const GrowerConfig& config,
+                                 const CloudView& cloud, const GrowerConfig& config,
                                  const ResultMeta& meta, const OccupancyOutputs& which = {});
 
 /// Stages collision_spheres.json.

@@ -206,7 +206,7 @@ PointCloud read_text_cloud(std::string_view bytes, std::string_view source,
     return cloud;
 }
 
-void write_text_cloud(std::ostream& out, const PointCloud& cloud, char delimiter, bool write_labels,
+void write_text_cloud(std::ostream& out, const CloudView& cloud, char delimiter, bool write_labels,
                       bool count_line, bool write_normals) {
     const CloudLayout layout = layout_for(cloud, write_labels, write_normals);
     OutputBuffer buf(out);

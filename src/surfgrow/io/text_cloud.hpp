@@ -4,7 +4,7 @@
 #include <ostream>
 #include <string_view>
 
-#include "surfgrow/core/point_cloud.hpp"
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/io/cloud_options.hpp"
 
 namespace surfgrow::io {
@@ -30,7 +30,7 @@ namespace surfgrow::io {
 /// row naming the columns ("x y z nx ny nz label", "x y z label", ...). With `count_line` the
 /// first line is the number of points (.pts). Throws Error(kInvalidParameter), writing nothing,
 /// when the cloud's normals are not one per point.
-void write_text_cloud(std::ostream& out, const PointCloud& cloud, char delimiter = ' ',
+void write_text_cloud(std::ostream& out, const CloudView& cloud, char delimiter = ' ',
                       bool write_labels = false, bool count_line = false,
                       bool write_normals = true);
 

@@ -17,7 +17,7 @@ Pipeline::Pipeline(PipelineConfig config) : config_(std::move(config)) {
     }
 }
 
-PipelineResult Pipeline::run(const PointCloud& cloud) const {
+PipelineResult Pipeline::run(const CloudView& cloud) const {
     const PipelineConfig& c = config_;
     const auto report = [&](std::string_view stage) {
         if (c.grow.progress) c.grow.progress(stage, 1.0);

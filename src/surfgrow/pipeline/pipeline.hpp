@@ -4,8 +4,8 @@
 
 #include <optional>
 
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/core/grower_config.hpp"
-#include "surfgrow/core/point_cloud.hpp"
 #include "surfgrow/core/surface_grower.hpp"
 #include "surfgrow/planes/bound_planes.hpp"
 #include "surfgrow/robot/collision_spheres.hpp"
@@ -58,14 +58,14 @@ class Pipeline {
 
     /// Runs every configured stage over `cloud`. GrowerConfig::progress hears the grower's stages,
     /// then "planes", "coverage", "occupancy", "collision" as each ends, and "done".
-    [[nodiscard]] PipelineResult run(const PointCloud& cloud) const;
+    [[nodiscard]] PipelineResult run(const CloudView& cloud) const;
 
   private:
     PipelineConfig config_;
 };
 
 /// One-call helper: Pipeline(config).run(cloud).
-[[nodiscard]] inline PipelineResult run_pipeline(const PointCloud& cloud,
+[[nodiscard]] inline PipelineResult run_pipeline(const CloudView& cloud,
                                                  const PipelineConfig& config = {}) {
     return Pipeline(config).run(cloud);
 }

@@ -279,7 +279,7 @@ Vec3d principal_axis(const Vec3d& n, const Mat3d& scatter) {
 // ---- The stages of compute_bound_planes, in the order it runs them.
 
 // Throws Error(kInvalidParameter) for labels or surfaces that are not a grow result of `cloud`.
-void check_grow_result(const PointCloud& cloud, std::span<const Surface> surfaces,
+void check_grow_result(const CloudView& cloud, std::span<const Surface> surfaces,
                        std::span<const std::int32_t> labels) {
     if (labels.size() != cloud.size())
         bad({"bound planes: ", std::to_string(labels.size()), " labels for ",
@@ -578,7 +578,7 @@ std::vector<std::int32_t> plane_labels(const BoundPlanes& planes,
     return out;
 }
 
-BoundPlanes compute_bound_planes(const PointCloud& cloud, std::span<const Surface> surfaces,
+BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface> surfaces,
                                  std::span<const std::int32_t> labels,
                                  const BoundPlaneConfig& config) {
     validate(config);

@@ -6,9 +6,9 @@
 #include <span>
 #include <vector>
 
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/core/geometry.hpp"
 #include "surfgrow/core/grow_result.hpp"
-#include "surfgrow/core/point_cloud.hpp"
 #include "surfgrow/core/surface.hpp"
 #include "surfgrow/planes/polygon2d.hpp"
 
@@ -104,13 +104,13 @@ struct BoundPlanes {
 /// `labels[i]` is the surface of cloud point i or -1 (GrowResult::labels). Throws
 /// Error(kInvalidParameter) when the labels do not match the cloud or the surfaces, a surface has
 /// a non-unit normal, or the configuration is out of range. An empty result gives no planes.
-[[nodiscard]] BoundPlanes compute_bound_planes(const PointCloud& cloud,
+[[nodiscard]] BoundPlanes compute_bound_planes(const CloudView& cloud,
                                                std::span<const Surface> surfaces,
                                                std::span<const std::int32_t> labels,
                                                const BoundPlaneConfig& config);
 
 /// The same from a GrowResult (its surfaces and labels): what `surfgrow grow` calls.
-[[nodiscard]] inline BoundPlanes compute_bound_planes(const PointCloud& cloud,
+[[nodiscard]] inline BoundPlanes compute_bound_planes(const CloudView& cloud,
                                                       const GrowResult& result,
                                                       const BoundPlaneConfig& config) {
     return compute_bound_planes(cloud, result.surfaces, result.labels, config);

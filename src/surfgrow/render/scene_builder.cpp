@@ -55,7 +55,7 @@ Scene scene_from_surfaces(const std::vector<Surface>& surfaces, const SurfaceSty
     return scene;
 }
 
-void add_points(Scene& scene, const PointCloud& cloud, std::span<const std::int32_t> labels,
+void add_points(Scene& scene, const CloudView& cloud, std::span<const std::int32_t> labels,
                 std::size_t surface_count, const SurfaceStyle& style) {
     if (!labels.empty() && labels.size() != cloud.size())
         throw Error(ErrorCode::kInvalidParameter,

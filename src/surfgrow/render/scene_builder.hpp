@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "surfgrow/core/point_cloud.hpp"
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/core/surface.hpp"
 #include "surfgrow/render/scene.hpp"
 
@@ -39,7 +39,7 @@ struct SurfaceStyle {
 /// -1 is grey; labels without a disk are coloured as ids of their own. Without labels every
 /// point is grey.
 /// Throws Error(kInvalidParameter) if `labels` has the wrong length.
-void add_points(Scene& scene, const PointCloud& cloud, std::span<const std::int32_t> labels,
+void add_points(Scene& scene, const CloudView& cloud, std::span<const std::int32_t> labels,
                 std::size_t surface_count, const SurfaceStyle& style = {});
 
 /// The legend line of a grown cloud: "276480 points -> 5231 surfaces, 99.4% registered".

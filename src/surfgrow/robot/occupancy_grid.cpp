@@ -84,7 +84,7 @@ Aabb OccupancyGrid::bounds() const {
     return box;
 }
 
-OccupancyGrid occupancy_grid(const PointCloud& cloud, std::span<const std::int32_t> labels,
+OccupancyGrid occupancy_grid(const CloudView& cloud, std::span<const std::int32_t> labels,
                              const GrowerConfig& config) {
     if (labels.size() != cloud.size())
         throw Error(ErrorCode::kInvalidParameter,

@@ -7,12 +7,12 @@
 #include <span>
 #include <vector>
 
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/geometry.hpp"
 #include "surfgrow/core/grow_result.hpp"
 #include "surfgrow/core/grower_config.hpp"
 #include "surfgrow/core/grown_points.hpp"
-#include "surfgrow/core/point_cloud.hpp"
 
 namespace surfgrow {
 
@@ -79,12 +79,12 @@ class OccupancyGrid {
 /// Throws Error(kInvalidParameter) if `labels` does not have one entry per point, or if a
 /// labelled point is not a grown point (the labels or the configuration are not those of this
 /// cloud), and the index's errors (kInvalidParameter, kCloudTooLarge).
-[[nodiscard]] OccupancyGrid occupancy_grid(const PointCloud& cloud,
+[[nodiscard]] OccupancyGrid occupancy_grid(const CloudView& cloud,
                                            std::span<const std::int32_t> labels,
                                            const GrowerConfig& config);
 
 /// Same, from the result of grow_surfaces(cloud, config).
-[[nodiscard]] inline OccupancyGrid occupancy_grid(const PointCloud& cloud, const GrowResult& result,
+[[nodiscard]] inline OccupancyGrid occupancy_grid(const CloudView& cloud, const GrowResult& result,
                                                   const GrowerConfig& config) {
     return occupancy_grid(cloud, result.labels, config);
 }

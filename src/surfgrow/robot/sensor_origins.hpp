@@ -5,9 +5,9 @@
 #include <optional>
 #include <vector>
 
+#include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/core/geometry.hpp"
 #include "surfgrow/core/grower_config.hpp"
-#include "surfgrow/core/point_cloud.hpp"
 
 namespace surfgrow {
 
@@ -27,7 +27,7 @@ struct SensorOrigins {
     [[nodiscard]] bool known() const { return source != Source::kNone; }
 
     /// Origin of point i of `cloud` (the cloud these origins were taken from), or nullptr.
-    [[nodiscard]] const Vec3d* origin_of(const PointCloud& cloud, std::size_t i) const {
+    [[nodiscard]] const Vec3d* origin_of(const CloudView& cloud, std::size_t i) const {
         if (source == Source::kViewpoint) return &origins.front();
         if (source == Source::kScanOrigins && i < cloud.scan_index.size()) {
             const std::uint32_t s = cloud.scan_index.data()[i];
@@ -51,7 +51,7 @@ struct SensorOrigins {
 
 /// The cloud's per-scan origins (scan_index and scan_origins), else config.viewpoint, else the
 /// cloud's viewpoint, else none. Origins that are not finite are dropped.
-[[nodiscard]] inline SensorOrigins sensor_origins(const PointCloud& cloud,
+[[nodiscard]] inline SensorOrigins sensor_origins(const CloudView& cloud,
                                                   const GrowerConfig& config) {
     SensorOrigins s;
     if (cloud.has_scan_index() && !cloud.scan_origins.empty()) {
@@ -59,7 +59,7 @@ struct SensorOrigins {
         for (const Vec3d& o : cloud.scan_origins) finite = finite && o.allFinite();
         if (finite) {
             s.source = SensorOrigins::Source::kScanOrigins;
-            s.origins = cloud.scan_origins;
+            s.origins.assign(cloud.scan_origins.begin(), cloud.scan_origins.end());
             return s;
         }
     }

@@ -18,7 +18,7 @@ std::uint64_t mix(std::uint64_t x) {
 
 }  // namespace
 
-std::vector<std::uint32_t> choose_points(const PointCloud& cloud, std::size_t max_points) {
+std::vector<std::uint32_t> choose_points(const CloudView& cloud, std::size_t max_points) {
     if (cloud.size() > 0xffffffffULL)
         throw Error(ErrorCode::kInvalidParameter, "the viewer takes at most 2^32 points");
     std::vector<std::uint32_t> keep;
