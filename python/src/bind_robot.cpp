@@ -38,6 +38,7 @@ struct Occupancy {
     SharedCloud cloud;
     OccupancyGrid grid;
     SensorOrigins origins;
+    int threads = 0;  // the GrowResult's
 };
 
 struct Collision {
@@ -389,7 +390,8 @@ void bind_robot(py::module_& m) {
                 {
                     py::gil_scoped_release release;
                     io::write_atomically(path, [&](std::ostream& out) {
-                        s = io::write_octomap_bt(out, o.grid, o.cloud->view(), {}, o.origins);
+                        s = io::write_octomap_bt(out, o.grid, o.cloud->view(), {}, o.origins,
+                                                 o.threads);
                     });
                 }
                 py::dict d;
@@ -419,6 +421,7 @@ void bind_robot(py::module_& m) {
             GrowerConfig cfg = grown->config;
             if (!origins.is_none()) cfg.viewpoint.reset();
             o->origins = sensor_origins(cloud->view(), cfg);
+            o->threads = cfg.threads;
             py::gil_scoped_release release;
             o->grid = occupancy_grid(cloud->view(), grown->result, cfg);
             return o;

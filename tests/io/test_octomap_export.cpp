@@ -79,7 +79,7 @@ std::string export_bt(const RoomCorner& rc, const SensorOrigins& origins,
                       io::OctomapSummary* summary = nullptr) {
     std::ostringstream out;
     const io::OctomapSummary s = io::write_octomap_bt(
-        out, rc.grid, rc.cloud, grown_point_mask(rc.cloud, rc.config), origins);
+        out, rc.grid, rc.cloud, grown_point_mask(rc.cloud, rc.config), origins, rc.config.threads);
     if (summary) *summary = s;
     return out.str();
 }

@@ -1,9 +1,11 @@
 #include "surfgrow/io/octomap_export.hpp"
 
 #include <octomap/OcTree.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <string>
 #include <utility>
@@ -11,6 +13,8 @@
 
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/core/threads.hpp"
+#include "surfgrow/io/octree_binary.hpp"
 
 namespace surfgrow::io {
 
@@ -33,18 +37,7 @@ octomap::OcTreeKey key_of(const octomap::OcTree& tree, const Vec3d& p, const cha
     return key;
 }
 
-std::uint64_t leaves_at_full_depth(const octomap::OcTree& tree, bool occupied) {
-    std::uint64_t n = 0;
-    const unsigned max_depth = tree.getTreeDepth();
-    for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
-        if (tree.isNodeOccupied(*it) != occupied) continue;
-        n += std::uint64_t{1} << (3 * (max_depth - it.getDepth()));
-    }
-    return n;
-}
-
-// A leaf key in one integer, 16 bits per axis, x lowest.
-std::uint64_t pack(const octomap::OcTreeKey& k) {
+PackedLeafKey pack(const octomap::OcTreeKey& k) {
     return std::uint64_t{k[0]} | (std::uint64_t{k[1]} << 16) | (std::uint64_t{k[2]} << 32);
 }
 
@@ -52,26 +45,6 @@ octomap::OcTreeKey unpack(std::uint64_t v) {
     return octomap::OcTreeKey(static_cast<octomap::key_type>(v & 0xffff),
                               static_cast<octomap::key_type>((v >> 16) & 0xffff),
                               static_cast<octomap::key_type>((v >> 32) & 0xffff));
-}
-
-// Morton (Z-order) code of a packed key: inserting leaves in this order walks the octree depth
-// first, so consecutive insertions share their path from the root (cache friendly).
-std::uint64_t spread(std::uint64_t v) {
-    v &= 0xffff;
-    v = (v | (v << 16)) & 0x0000ff0000ffull;
-    v = (v | (v << 8)) & 0x00f00f00f00full;
-    v = (v | (v << 4)) & 0x0c30c30c30c3ull;
-    v = (v | (v << 2)) & 0x249249249249ull;
-    return v;
-}
-
-std::uint64_t morton(std::uint64_t packed) {
-    return spread(packed) | (spread(packed >> 16) << 1) | (spread(packed >> 32) << 2);
-}
-
-void sort_morton(std::vector<std::uint64_t>& keys) {
-    std::sort(keys.begin(), keys.end(),
-              [](std::uint64_t a, std::uint64_t b) { return morton(a) < morton(b); });
 }
 
 // A set of leaf keys within a box of keys: a bitmap when the box has at most 2^29 leaves (64 MiB),
@@ -98,6 +71,26 @@ class LeafSet {
             if (keys_.size() >= 2 * sorted_ + (std::size_t{1} << 20)) finish();
         }
     }
+    [[nodiscard]] bool dense() const { return dense_; }
+    // insert() for threads sharing a dense set: an atomic OR (a union: the same bits whatever
+    // the order).
+    void insert_shared(std::uint64_t key) {
+        const std::uint64_t i = index(key);
+        const std::uint64_t bit = std::uint64_t{1} << (i & 63);
+        std::atomic_ref<std::uint64_t> word(bits_[i >> 6]);
+        // Most leaves near a sensor are crossed by many rays: a plain read spares the locked OR.
+        if (!(word.load(std::memory_order_relaxed) & bit))
+            word.fetch_or(bit, std::memory_order_relaxed);
+    }
+    // How many keys f would see in for_each_not_in(other): to reserve for them.
+    [[nodiscard]] std::size_t count_not_in(const LeafSet& other) const {
+        std::size_t n = 0;
+        if (dense_ && other.dense_) {
+            for (std::size_t w = 0; w < bits_.size(); ++w)
+                n += static_cast<std::size_t>(std::popcount(bits_[w] & ~other.bits_[w]));
+        }
+        return n;
+    }
     void finish() {
         if (dense_) return;
         std::sort(keys_.begin(), keys_.end());
@@ -109,24 +102,39 @@ class LeafSet {
         const std::uint64_t i = index(key);
         return (bits_[i >> 6] >> (i & 63)) & 1;
     }
+    // f(key) for every key in this set and not in `other` (a set over the same box), in
+    // ascending order of the box's linear index.
+    template <class F>
+    void for_each_not_in(const LeafSet& other, F&& f) const {
+        if (!dense_ || !other.dense_) {
+            for_each([&](std::uint64_t k) {
+                if (!other.contains(k)) f(k);
+            });
+            return;
+        }
+        for (std::size_t w = 0; w < bits_.size(); ++w)
+            for_each_in_word(w, bits_[w] & ~other.bits_[w], f);
+    }
     template <class F>
     void for_each(F&& f) const {
         if (!dense_) {
             for (const std::uint64_t k : keys_) f(k);
             return;
         }
-        for (std::size_t w = 0; w < bits_.size(); ++w) {
-            for (std::uint64_t word = bits_[w]; word; word &= word - 1) {
-                std::uint64_t i = w * 64 + static_cast<std::uint64_t>(std::countr_zero(word));
-                const std::uint64_t x = i % dims_[0];
-                i /= dims_[0];
-                const std::uint64_t y = i % dims_[1], z = i / dims_[1];
-                f((lo_[0] + x) | ((lo_[1] + y) << 16) | ((lo_[2] + z) << 32));
-            }
-        }
+        for (std::size_t w = 0; w < bits_.size(); ++w) for_each_in_word(w, bits_[w], f);
     }
 
   private:
+    template <class F>
+    void for_each_in_word(std::size_t w, std::uint64_t bits, F&& f) const {
+        for (std::uint64_t word = bits; word; word &= word - 1) {
+            std::uint64_t i = w * 64 + static_cast<std::uint64_t>(std::countr_zero(word));
+            const std::uint64_t x = i % dims_[0];
+            i /= dims_[0];
+            const std::uint64_t y = i % dims_[1], z = i / dims_[1];
+            f((lo_[0] + x) | ((lo_[1] + y) << 16) | ((lo_[2] + z) << 32));
+        }
+    }
     [[nodiscard]] std::uint64_t index(std::uint64_t key) const {
         const std::uint64_t x = (key & 0xffff) - lo_[0], y = ((key >> 16) & 0xffff) - lo_[1],
                             z = (key >> 32) - lo_[2];
@@ -143,7 +151,7 @@ class LeafSet {
 
 OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
                                 const CloudView& cloud, std::span<const std::uint8_t> ray_mask,
-                                const SensorOrigins& origins) {
+                                const SensorOrigins& origins, int threads) {
     if (!(grid.mu() > 0))
         throw Error(ErrorCode::kInvalidParameter,
                     cat({"environment.bt: the resolution must be positive, got ", num(grid.mu())}));
@@ -196,44 +204,41 @@ OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
             LeafSet blocked(lo, hi), carved(lo, hi);
             for (const std::uint64_t key : occupied) blocked.insert(key);
             for (const auto& r : rays) blocked.insert(r.second);
-            octomap::KeyRay ray;
-            for (const auto& [o, end] : rays) {
-                if (!tree.computeRayKeys(from[o], tree.keyToCoord(unpack(end)), ray)) continue;
-                ++summary.rays;
-                for (const octomap::OcTreeKey& key : ray) carved.insert(pack(key));
+            // Rays in parallel into one bitmap (the sparse form takes one thread).
+            const int team = carved.dense() ? resolve_threads(threads) : 1;
+            const auto n = static_cast<std::ptrdiff_t>(rays.size());
+            std::uint64_t cast = 0;
+#pragma omp parallel num_threads(team) if (team > 1 && n > 4096) reduction(+ : cast)
+            {
+                octomap::KeyRay ray;
+                const bool shared = omp_get_num_threads() > 1;
+#pragma omp for schedule(dynamic, 1024)
+                for (std::ptrdiff_t r = 0; r < n; ++r) {
+                    const auto& [o, end] = rays[static_cast<std::size_t>(r)];
+                    if (!tree.computeRayKeys(from[o], tree.keyToCoord(unpack(end)), ray)) continue;
+                    ++cast;
+                    for (const octomap::OcTreeKey& key : ray) {
+                        if (shared) {
+                            carved.insert_shared(pack(key));
+                        } else {
+                            carved.insert(pack(key));
+                        }
+                    }
+                }
             }
+            summary.rays = cast;
             blocked.finish();
             carved.finish();
-            carved.for_each([&](std::uint64_t key) {
-                if (!blocked.contains(key)) free.push_back(key);
-            });
+            free.reserve(carved.count_not_in(blocked));
+            carved.for_each_not_in(blocked, [&](std::uint64_t key) { free.push_back(key); });
         }
     }
 
-    // Values are set, not accumulated, so the tree does not depend on the order of insertion.
-    sort_morton(free);
-    sort_morton(occupied);
-    for (const std::uint64_t key : free)
-        tree.setNodeValue(unpack(key), tree.getClampingThresMinLog(), true);
-    for (const std::uint64_t key : occupied)
-        tree.setNodeValue(unpack(key), tree.getClampingThresMaxLog(), true);
-    tree.updateInnerOccupancy();
-    // OcTree::writeBinary() less its " done." on stderr, and with the resolution at full
-    // precision (the library prints 6 digits, so a resolution like 1/300 would read back off).
-    tree.toMaxLikelihood();
-    tree.prune();
-    const auto precision = out.precision(17);
-    out << "# Octomap OcTree binary file\n"
-        << "# (feel free to add / change comments, but leave the first line as it is!)\n#\n"
-        << "# written by surfgrow: occupied = registered points' cubes, free = carved by rays\n"
-        << "id " << tree.getTreeType() << "\nsize " << tree.size() << "\nres "
-        << tree.getResolution() << "\ndata\n";
-    out.precision(precision);
-    tree.writeBinaryData(out);
+    write_octree_binary(out, grid.mu(), free, occupied);
     if (!out)
         throw Error(ErrorCode::kCannotWrite, "environment.bt: the OctoMap could not be written");
-    summary.occupied = leaves_at_full_depth(tree, true);
-    summary.free = leaves_at_full_depth(tree, false);
+    summary.occupied = occupied.size();
+    summary.free = free.size();
     return summary;
 }
 

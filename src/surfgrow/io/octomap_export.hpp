@@ -20,8 +20,9 @@ struct OctomapSummary {
     SensorOrigins::Source carving = SensorOrigins::Source::kNone;
 };
 
-/// Builds an octomap::OcTree at resolution grid.mu() and writes it as OctoMap's binary .bt format
-/// (OcTree::writeBinary: maximum-likelihood occupied / free, unknown where there is no node).
+/// Writes the occupancy as an OctoMap OcTree at resolution grid.mu() in OctoMap's binary .bt
+/// format: the bytes of OcTree::writeBinary (maximum-likelihood occupied / free, pruned, unknown
+/// where there is no node), written from the leaves' keys (write_octree_binary).
 ///
 /// Coordinates are the cloud's own frame (PointCloud positions, i.e. file coordinates minus
 /// cloud.offset, which is zero for all but georeferenced clouds).
@@ -41,9 +42,10 @@ struct OctomapSummary {
 ///
 /// Throws Error(kCloudTooLarge) when a cell or origin lies beyond OctoMap's key range (2^15
 /// leaves, 393 m at 12 mm, each way from the frame origin) and Error(kCannotWrite) if the stream
-/// fails. Deterministic: the same bytes for the same input.
+/// fails. Deterministic: the same bytes for the same input, for any number of `threads` (rays
+/// are cast in parallel; 0: every core).
 OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
                                 const CloudView& cloud, std::span<const std::uint8_t> ray_mask,
-                                const SensorOrigins& origins);
+                                const SensorOrigins& origins, int threads = 1);
 
 }  // namespace surfgrow::io

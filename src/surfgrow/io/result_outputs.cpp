@@ -91,7 +91,7 @@ OccupancySummary stage_occupancy(OutputTransaction& tx, const OccupancyGrid& gri
         const std::vector<std::uint8_t> rays = grown_point_mask(cloud, config);
         const SensorOrigins origins = sensor_origins(cloud, config);
         tx.add("environment.bt", [&](std::ostream& o) {
-            summary.octomap = write_octomap_bt(o, grid, cloud, rays, origins);
+            summary.octomap = write_octomap_bt(o, grid, cloud, rays, origins, config.threads);
         });
         summary.octomap_written = true;
     }
