@@ -1,6 +1,13 @@
 #include "surfgrow/io/result_outputs.hpp"
 
+#include <future>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "surfgrow/core/grown_points.hpp"
+#include "surfgrow/core/threads.hpp"
 #include "surfgrow/io/collision_io.hpp"
 #include "surfgrow/io/coverage_io.hpp"
 #include "surfgrow/io/occupancy_io.hpp"
@@ -34,10 +41,68 @@ bool is_result_file(std::string_view file_name) {
     return false;
 }
 
+namespace {
+
+// environment.bt in memory (a few hundred KB) and what went into it.
+struct OctomapBytes {
+    std::string bytes;
+    OctomapSummary summary;
+};
+
+OctomapBytes octomap_bytes(const OccupancyGrid& grid, const CloudView& cloud,
+                           const GrowerConfig& config) {
+    const std::vector<std::uint8_t> rays = grown_point_mask(cloud, config);
+    const SensorOrigins origins = sensor_origins(cloud, config);
+    std::ostringstream out;
+    OctomapBytes b;
+    b.summary = write_octomap_bt(out, grid, cloud, rays, origins, config.threads);
+    b.bytes = std::move(out).str();
+    return b;
+}
+
+// stage_occupancy, with environment.bt already on its way when `ready` is given.
+OccupancySummary stage_occupancy_files(OutputTransaction& tx, const OccupancyGrid& grid,
+                                       const CloudView& cloud, const GrowerConfig& config,
+                                       const ResultMeta& meta, const OccupancyOutputs& which,
+                                       std::future<OctomapBytes>* ready) {
+    OccupancySummary summary;
+    summary.occupied_cubes = grid.size();
+    summary.registered_points = grid.registered_points();
+    // An output not written again would describe another grid: it goes.
+    for (const auto& [written, name] : {std::pair{which.ply, "occupancy.ply"},
+                                        {which.octomap, "environment.bt"},
+                                        {which.json, "occupancy.json"}})
+        if (!written) tx.drop(name);
+    if (which.ply)
+        tx.add("occupancy.ply", [&](std::ostream& o) { write_occupancy_ply(o, grid, meta); });
+    if (which.octomap) {
+        const OctomapBytes b = ready ? ready->get() : octomap_bytes(grid, cloud, config);
+        tx.add("environment.bt", [&](std::ostream& o) {
+            o.write(b.bytes.data(), static_cast<std::streamsize>(b.bytes.size()));
+        });
+        summary.octomap = b.summary;
+        summary.octomap_written = true;
+    }
+    if (which.json)
+        tx.add("occupancy.json", [&](std::ostream& o) {
+            write_occupancy_json(o, grid, meta,
+                                 summary.octomap_written ? &summary.octomap : nullptr);
+        });
+    return summary;
+}
+
+}  // namespace
+
 OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,
                               const PipelineConfig& config, const PipelineResult& result,
                               const ResultMeta& meta, const ResultFiles& files) {
     const GrowResult& r = result.grow;
+    // environment.bt's rays take longest of the outputs and need none of the others: with more
+    // than one thread they are cast while the other files are written.
+    std::future<OctomapBytes> octomap;
+    if (result.occupancy && files.octomap && resolve_threads(config.grow.threads) > 1)
+        octomap = std::async(std::launch::async,
+                             [&] { return octomap_bytes(*result.occupancy, cloud, config.grow); });
     tx.add("surfaces.ply", [&](std::ostream& o) { write_surfaces_ply(o, r.surfaces, meta); });
     tx.add("surfaces.json", [&](std::ostream& o) { write_result_json(o, r, config.grow, meta); });
     if (files.labels) tx.add("labels.txt", [&](std::ostream& o) { write_labels_txt(o, r.labels); });
@@ -50,7 +115,8 @@ OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,
         OccupancyOutputs which;
         which.ply = which.json = files.occupancy;
         which.octomap = files.octomap;
-        occupancy = stage_occupancy(tx, *result.occupancy, cloud, config.grow, meta, which);
+        occupancy = stage_occupancy_files(tx, *result.occupancy, cloud, config.grow, meta, which,
+                                          octomap.valid() ? &octomap : nullptr);
     }
     if (result.collision) stage_collision(tx, *result.collision, meta);
     return occupancy;
@@ -77,30 +143,7 @@ void stage_coverage(OutputTransaction& tx, const CoveragePlan& plan, const Resul
 OccupancySummary stage_occupancy(OutputTransaction& tx, const OccupancyGrid& grid,
                                  const CloudView& cloud, const GrowerConfig& config,
                                  const ResultMeta& meta, const OccupancyOutputs& which) {
-    OccupancySummary summary;
-    summary.occupied_cubes = grid.size();
-    summary.registered_points = grid.registered_points();
-    // An output not written again would describe another grid: it goes.
-    for (const auto& [written, name] : {std::pair{which.ply, "occupancy.ply"},
-                                        {which.octomap, "environment.bt"},
-                                        {which.json, "occupancy.json"}})
-        if (!written) tx.drop(name);
-    if (which.ply)
-        tx.add("occupancy.ply", [&](std::ostream& o) { write_occupancy_ply(o, grid, meta); });
-    if (which.octomap) {
-        const std::vector<std::uint8_t> rays = grown_point_mask(cloud, config);
-        const SensorOrigins origins = sensor_origins(cloud, config);
-        tx.add("environment.bt", [&](std::ostream& o) {
-            summary.octomap = write_octomap_bt(o, grid, cloud, rays, origins, config.threads);
-        });
-        summary.octomap_written = true;
-    }
-    if (which.json)
-        tx.add("occupancy.json", [&](std::ostream& o) {
-            write_occupancy_json(o, grid, meta,
-                                 summary.octomap_written ? &summary.octomap : nullptr);
-        });
-    return summary;
+    return stage_occupancy_files(tx, grid, cloud, config, meta, which, nullptr);
 }
 
 void stage_collision(OutputTransaction& tx, const CollisionSpheres& spheres,
