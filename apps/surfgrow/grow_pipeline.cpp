@@ -173,6 +173,7 @@ GrowRun grow_and_write(const PointCloud& cloud, const PipelineConfig& config,
     if (r.planes) robot_seconds["planes"] = r.seconds.planes;
     if (r.coverage) robot_seconds["coverage"] = r.seconds.coverage;
     if (r.occupancy) robot_seconds["occupancy"] = r.seconds.occupancy;
+    if (occupancy.octomap_written) robot_seconds["environment_bt"] = occupancy.octomap_seconds;
     if (r.collision) robot_seconds["collision"] = r.seconds.collision;
     const StageTimes& t = r.grow.stats.seconds;
     const nlohmann::json record = {

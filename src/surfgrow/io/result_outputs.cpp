@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "surfgrow/core/grown_points.hpp"
+#include "surfgrow/core/stopwatch.hpp"
 #include "surfgrow/core/threads.hpp"
 #include "surfgrow/io/collision_io.hpp"
 #include "surfgrow/io/coverage_io.hpp"
@@ -47,16 +48,19 @@ namespace {
 struct OctomapBytes {
     std::string bytes;
     OctomapSummary summary;
+    double seconds = 0.0;
 };
 
 OctomapBytes octomap_bytes(const OccupancyGrid& grid, const CloudView& cloud,
                            const GrowerConfig& config) {
+    const Stopwatch watch;
     const std::vector<std::uint8_t> rays = grown_point_mask(cloud, config);
     const SensorOrigins origins = sensor_origins(cloud, config);
     std::ostringstream out;
     OctomapBytes b;
     b.summary = write_octomap_bt(out, grid, cloud, rays, origins, config.threads);
     b.bytes = std::move(out).str();
+    b.seconds = watch.seconds();
     return b;
 }
 
@@ -81,6 +85,7 @@ OccupancySummary stage_occupancy_files(OutputTransaction& tx, const OccupancyGri
             o.write(b.bytes.data(), static_cast<std::streamsize>(b.bytes.size()));
         });
         summary.octomap = b.summary;
+        summary.octomap_seconds = b.seconds;
         summary.octomap_written = true;
     }
     if (which.json)

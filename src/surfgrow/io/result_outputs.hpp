@@ -41,6 +41,7 @@ struct OccupancySummary {
     std::uint64_t registered_points = 0;
     bool octomap_written = false;
     OctomapSummary octomap;
+    double octomap_seconds = 0.0;  ///< casting its rays and writing it (in memory)
 };
 
 /// Whether `file_name` is one of the files a result folder can hold (those below, surfaces.png,
