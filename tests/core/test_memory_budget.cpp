@@ -6,6 +6,7 @@
 
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/memory_budget.hpp"
+#include "surfgrow/core/surface_grower.hpp"
 
 namespace surfgrow {
 namespace {
@@ -59,6 +60,36 @@ TEST(MemoryBudget, MoreThanTheBudgetIsCloudTooLargeNamingTheWork) {
         EXPECT_NE(m.find("5 MB"), std::string::npos) << m;
         EXPECT_NE(m.find("SURFGROW_MEMORY_LIMIT allows"), std::string::npos) << m;
     }
+}
+
+// Growing refuses a cloud whose index and buffers would not fit, before allocating them, and
+// names what to do; a crop that leaves few points in fits.
+TEST(MemoryBudget, GrowingACloudBeyondTheBudgetIsRefusedUpFront) {
+    PointCloud cloud;  // 200 000 points on a 4 m x 5 m floor: 1.6 MB of positions
+    for (int i = 0; i < 400; ++i)
+        for (int j = 0; j < 500; ++j)
+            cloud.points.emplace_back(0.01f * float(i), 0.01f * float(j), 0.0f);
+    GrowerConfig config;
+    config.mu = 0.03;
+    {
+        const Limit l("4M");  // the growing needs about 200000 * 72 B = 14 MB
+        try {
+            (void)grow_surfaces(cloud, config);
+            FAIL() << "no error";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ErrorCode::kCloudTooLarge);
+            const std::string m = e.what();
+            EXPECT_NE(m.find("growing 200000 points needs about 14 MB"), std::string::npos) << m;
+            EXPECT_NE(m.find("crop the workspace"), std::string::npos) << m;
+        }
+        // A crop to 0.5 m around a corner indexes 2 000 points: that fits.
+        config.crop.radius = 0.5;
+        config.crop.center = Vec3d(0, 0, 0);
+        const GrowResult r = grow_surfaces(cloud, config);
+        EXPECT_GT(r.stats.registered, 1500u);
+    }
+    config.crop = {};
+    EXPECT_GT(grow_surfaces(cloud, config).stats.registered, 190000u);  // no limit: it grows
 }
 
 }  // namespace

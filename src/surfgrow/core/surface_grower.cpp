@@ -22,6 +22,7 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/grown_points.hpp"
 #include "surfgrow/core/length_limits.hpp"
+#include "surfgrow/core/memory_budget.hpp"
 #include "surfgrow/core/noise_profile.hpp"
 #include "surfgrow/core/plane_pooling.hpp"
 #include "surfgrow/core/random.hpp"
@@ -1199,6 +1200,12 @@ SurfaceGrower::SurfaceGrower(GrowerConfig config) : config_(std::move(config)) {
 GrowIndex SurfaceGrower::index(const CloudView& cloud) const {
     Stopwatch watch;
     WorkspaceMask workspace = workspace_mask(cloud, config_);
+    // A clear error before the allocations rather than the OOM killer half way: the labels and
+    // distances of every point, and per indexed point the cube index, its sorted coordinates
+    // and the growing's buffers (53 B measured on 10^6 points; 64 with a margin).
+    const std::uint64_t indexed = cloud.size() - workspace.cropped;  // at most: NaNs are not
+    check_memory(8.0 * double(cloud.size()) + 64.0 * double(indexed),
+                 cat({"growing ", std::to_string(indexed), " points"}));
     refuse_mu_below_resolution(cloud, workspace, config_.mu, resolve_threads(config_.threads));
     GrowIndex g;
     g.index =
