@@ -1,9 +1,11 @@
 // `surfgrow planes DIR --cloud CLOUD`: bound planes of an existing result.
+#include <filesystem>
 #include <iostream>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "planes_options.hpp"
+#include "surfaces_picture.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/io/result_folder.hpp"
 #include "surfgrow/io/result_outputs.hpp"
@@ -36,6 +38,12 @@ void add_planes_command(CLI::App& app) {
             compute_bound_planes(f.cloud, f.result.surfaces, f.labels, config);
         io::OutputTransaction tx(args->dir);
         io::stage_planes(tx, planes, meta, args->planes.obj);
+        // The pictures grow drew are coloured by plane: drawn again with the new planes.
+        const std::filesystem::path dir(args->dir);
+        stage_surfaces_pictures(tx, f.result.surfaces, f.result.stats, planes.plane_of_patch,
+                                meta.units, args->threads,
+                                std::filesystem::exists(dir / "surfaces.png"),
+                                std::filesystem::exists(dir / "corner.png"));
         tx.commit();
         if (!tx.removed().empty()) {
             std::string names;

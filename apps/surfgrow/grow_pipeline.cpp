@@ -144,20 +144,10 @@ GrowRun grow_and_write(const PointCloud& cloud, const PipelineConfig& config,
     io::OutputTransaction tx(out_dir, io::is_result_file);
     const io::OccupancySummary occupancy =
         io::stage_result(tx, cloud, pipeline.config(), r, meta, outputs.files);
-    if (outputs.picture || outputs.close_up) {
-        std::span<const std::int32_t> planes;
-        if (r.planes) planes = r.planes->plane_of_patch;
-        SurfacesPicture picture =
-            surfaces_picture(r.grow.surfaces, r.grow.stats, planes, units.name, grow.threads);
-        if (outputs.picture) {
-            const render::Image image = render::render_scene(picture.scene, picture.options);
-            tx.add("surfaces.png", [&](std::ostream& o) { render::write_png(image, o); });
-        }
-        if (outputs.close_up && make_corner_close_up(picture, planes)) {
-            const render::Image image = render::render_scene(picture.scene, picture.options);
-            tx.add("corner.png", [&](std::ostream& o) { render::write_png(image, o); });
-        }
-    }
+    std::span<const std::int32_t> planes;
+    if (r.planes) planes = r.planes->plane_of_patch;
+    stage_surfaces_pictures(tx, r.grow.surfaces, r.grow.stats, planes, units.name, grow.threads,
+                            outputs.picture, outputs.close_up);
     run.write_seconds = watch.seconds();
 
     if (r.planes) run.robot.planes = planes_summary(*r.planes, units.name);

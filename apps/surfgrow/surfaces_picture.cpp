@@ -4,6 +4,7 @@
 
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/render/close_up.hpp"
+#include "surfgrow/render/png.hpp"
 #include "surfgrow/render/scene_builder.hpp"
 
 namespace surfgrow::cli {
@@ -42,6 +43,25 @@ bool make_corner_close_up(SurfacesPicture& picture,
     picture.scene.legend = cat(
         {"close-up of a corner, ", across, " ", picture.options.units, " across; normals in red"});
     return true;
+}
+
+void stage_surfaces_pictures(io::OutputTransaction& tx, const std::vector<Surface>& surfaces,
+                             const GrowStats& stats, std::span<const std::int32_t> plane_of_surface,
+                             const std::string& units, int threads, bool overview, bool close_up) {
+    if (!overview && !close_up) return;
+    SurfacesPicture picture = surfaces_picture(surfaces, stats, plane_of_surface, units, threads);
+    if (overview) {
+        const render::Image image = render::render_scene(picture.scene, picture.options);
+        tx.add("surfaces.png", [&](std::ostream& o) { render::write_png(image, o); });
+    }
+    if (close_up) {
+        if (make_corner_close_up(picture, plane_of_surface)) {
+            const render::Image image = render::render_scene(picture.scene, picture.options);
+            tx.add("corner.png", [&](std::ostream& o) { render::write_png(image, o); });
+        } else {
+            tx.drop("corner.png");
+        }
+    }
 }
 
 }  // namespace surfgrow::cli

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "surfgrow/core/grow_result.hpp"
+#include "surfgrow/io/atomic_output.hpp"
 #include "surfgrow/render/renderer.hpp"
 #include "surfgrow/render/scene.hpp"
 
@@ -36,5 +37,12 @@ struct SurfacesPicture {
 /// (render::find_corner), captioned with its width. False (the picture unchanged) when the
 /// result has no such corner or is not coloured by plane.
 bool make_corner_close_up(SurfacesPicture& picture, std::span<const std::int32_t> plane_of_surface);
+
+/// Stages surfaces.png (`overview`) and corner.png (`close_up`) of a result into `tx`; without a
+/// corner, corner.png is dropped. grow writes them; planes draws them again, so that their
+/// colours are the new planes'.
+void stage_surfaces_pictures(io::OutputTransaction& tx, const std::vector<Surface>& surfaces,
+                             const GrowStats& stats, std::span<const std::int32_t> plane_of_surface,
+                             const std::string& units, int threads, bool overview, bool close_up);
 
 }  // namespace surfgrow::cli

@@ -92,6 +92,27 @@ TEST_F(CliPlanes, PlanesThenCoverageWriteEveryOutput) {
     }
 }
 
+// The picture grow drew is coloured by plane: planes with other settings draws it again, the
+// picture `render` draws of the folder now, not the old planes' colours.
+TEST_F(CliPlanes, NewPlanesRedrawThePicture) {
+    const fs::path out = dir_ / "pictured";
+    CliRun r = surfgrow(cat({"grow ", q(cloud_), " -o ", q(out), " --viewpoint 0.3,0.4,0.5m -q"}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    const std::string before = test::read_bytes(out / "surfaces.png");
+    // Nearly every patch its own plane: other colours.
+    r = surfgrow(cat({"planes ", q(out), " --cloud ", q(cloud_),
+                      " --angle 0.5 --offset 0.05mm "
+                      "--no-gap-bridging -q"}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    const std::string after = test::read_bytes(out / "surfaces.png");
+    EXPECT_NE(after, before);
+    const fs::path drawn = dir_ / "drawn.png";
+    r = surfgrow(cat({"render ", q(out), " -o ", q(drawn)}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(test::read_bytes(drawn), after);
+    EXPECT_FALSE(fs::exists(out / "corner.png"));  // grow drew none: planes draws none
+}
+
 TEST_F(CliPlanes, CoverageOptionsCarryUnitsAndReachThePlan) {
     ASSERT_EQ(surfgrow(cat({"planes ", q(out_), " --cloud ", q(cloud_), " -q"})).code, 0);
     const CliRun r =
