@@ -31,7 +31,9 @@ struct CloudView {
     CloudView(const PointCloud& c)  // NOLINT(google-explicit-constructor)
         : points(c.points),
           offset(c.offset),
-          viewpoint(c.viewpoint),
+          // Not the optional itself: GCC's -O1 (sanitizer builds) warns on copying an empty
+          // one's storage.
+          viewpoint(c.viewpoint ? std::optional<Vec3d>(*c.viewpoint) : std::nullopt),
           scan_index(c.scan_index),
           scan_origins(c.scan_origins),
           labels(c.labels),
