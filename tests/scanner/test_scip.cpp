@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "surfgrow/scanner/scip.hpp"
+#include "surfgrow/scanner/urg_driver.hpp"
 #include "surfgrow/scanner/urg_emulator.hpp"
 
 namespace surfgrow::scanner {
@@ -205,6 +206,87 @@ TEST(UrgEmulator, InjectsCorruptDroppedAndUnpluggedReplies) {
     EXPECT_NO_THROW((void)scip::parse_reply(urg.reply(gd)));              // 3: fine
     EXPECT_EQ(urg.reply(gd), "");                                         // unplugged
     EXPECT_EQ(urg.reply("VV\n"), "");
+}
+
+// The driver against the emulator: identity, scans equal to what the sensor measured, and
+// through lost and damaged replies by asking again.
+TEST(UrgDriver, ConnectsAndScansThroughLostAndDamagedReplies) {
+    UrgFaults faults;
+    faults.corrupt = {0, 3};
+    faults.dropped = {1};
+    UrgEmulator urg(wall, faults);
+    UrgDriver driver([&](std::string_view c) { return urg.reply(c); });
+    const UrgIdentity id = driver.connect();
+    EXPECT_EQ(id.product, "SOKUIKI Sensor URG-04LX");
+    EXPECT_EQ(id.protocol, "SCIP 2.0");
+    EXPECT_EQ(id.first_step, 44);
+    EXPECT_EQ(id.last_step, 725);
+    EXPECT_EQ(id.front_step, 384);
+    EXPECT_EQ(id.steps_per_turn, 1024);
+    EXPECT_TRUE(urg.laser_on());
+    const std::vector<std::uint32_t> truth = wall();
+    const std::vector<std::uint32_t> a = driver.scan(44, 725);  // replies 0, 1 lost; 2 good
+    EXPECT_EQ(a, std::vector<std::uint32_t>(truth.begin() + 44, truth.begin() + 726));
+    EXPECT_EQ(driver.retries(), 2);
+    const std::vector<std::uint32_t> b = driver.scan(380, 389);  // 3 damaged, 4 good
+    EXPECT_EQ(b, std::vector<std::uint32_t>(truth.begin() + 380, truth.begin() + 390));
+    EXPECT_EQ(driver.retries(), 3);
+    // The laser switched off behind the driver's back: turned on again.
+    (void)urg.reply("QT\n");
+    EXPECT_EQ(driver.scan(384, 384), std::vector<std::uint32_t>{1000});
+    driver.close();
+    EXPECT_FALSE(urg.laser_on());
+}
+
+TEST(UrgDriver, AnUnpluggedSensorIsADeviceErrorAfterTheAttempts) {
+    UrgFaults faults;
+    faults.unplugged_after = 1;
+    UrgEmulator urg(wall, faults);
+    int sent = 0;
+    UrgDriver driver(
+        [&](std::string_view c) {
+            ++sent;
+            return urg.reply(c);
+        },
+        4);
+    (void)driver.connect();
+    (void)driver.scan(44, 725);
+    const int before = sent;
+    try {
+        (void)driver.scan(44, 725);
+        FAIL() << "no error";
+    } catch (const DeviceError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("no good reply to GD0044072501 in 4 attempts (time-out)"),
+                  std::string::npos)
+            << m;
+        EXPECT_NE(m.find("unplugged"), std::string::npos) << m;
+    }
+    EXPECT_EQ(sent - before, 4);
+    // A reply for another request (a late one) is not taken for this one.
+    UrgEmulator late(wall);
+    (void)late.reply("BM\n");
+    const std::string stale = late.reply("GD0044072501;old\n");
+    UrgDriver confused([&](std::string_view) { return stale; }, 2);
+    try {
+        (void)confused.scan(44, 725);
+        FAIL() << "no error";
+    } catch (const DeviceError& e) {
+        EXPECT_NE(std::string(e.what()).find("a reply to another command"), std::string::npos)
+            << e.what();
+    }
+    // A request the sensor refuses is not retried: its status is named.
+    UrgEmulator urg2(wall);
+    UrgDriver strict([&](std::string_view c) { return urg2.reply(c); });
+    (void)strict.connect();
+    try {
+        (void)strict.scan(44, 900);
+        FAIL() << "no error";
+    } catch (const DeviceError& e) {
+        EXPECT_NE(std::string(e.what()).find("status 04: the end step is beyond"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace
