@@ -5,7 +5,8 @@
 
 #include <string>
 
-#include "surfgrow/scanner/dynamixel.hpp"
+#include "surfgrow/scanner/servo_driver.hpp"
+#include "surfgrow/scanner/servo_emulator.hpp"
 
 namespace surfgrow::scanner::dxl {
 namespace {
