@@ -87,7 +87,8 @@ class GrowResult:
     @property
     def tolerances(self) -> npt.NDArray[np.float64]: ...
     @property
-    def cloud(self) -> Cloud: ...
+    def cloud(self) -> Cloud:
+        """The Cloud grown from: shared when a Cloud was passed, else copied from the array on first use."""
     @property
     def parameters(self) -> dict:
         """Every parameter used, defaults resolved (as in surfaces.json)."""
