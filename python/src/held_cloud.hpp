@@ -29,8 +29,6 @@ class HeldCloud {
 
     /// What every stage reads: valid while this object lives.
     [[nodiscard]] const CloudView& view() const { return view_; }
-    /// Whether the points are the caller's own array, read in place.
-    [[nodiscard]] bool borrowed() const { return static_cast<bool>(borrowed_); }
     /// As a surfgrow.Cloud: the shared one, or (for arrays) a copy made on first use.
     [[nodiscard]] std::shared_ptr<PointCloud> cloud() const;
 

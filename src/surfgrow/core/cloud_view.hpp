@@ -34,15 +34,9 @@ struct CloudView {
 
     [[nodiscard]] std::size_t size() const { return points.size(); }
     [[nodiscard]] bool empty() const { return points.empty(); }
-    [[nodiscard]] bool has_scan_index() const {
-        return !scan_index.empty() && scan_index.size() == points.size();
-    }
-    [[nodiscard]] bool has_labels() const {
-        return !labels.empty() && labels.size() == points.size();
-    }
-    [[nodiscard]] bool has_normals() const {
-        return !normals.empty() && normals.size() == points.size();
-    }
+    [[nodiscard]] bool has_scan_index() const { return one_per_point(scan_index.size(), size()); }
+    [[nodiscard]] bool has_labels() const { return one_per_point(labels.size(), size()); }
+    [[nodiscard]] bool has_normals() const { return one_per_point(normals.size(), size()); }
 };
 
 /// A PointCloud that owns a copy of what `view` shows.

@@ -1,6 +1,7 @@
 // The point cloud every stage works on: positions plus what is known about the scans.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -8,6 +9,12 @@
 #include "surfgrow/core/geometry.hpp"
 
 namespace surfgrow {
+
+/// Whether an optional per-point field of `entries` values holds one per point: empty means
+/// unknown, and any other count is not trusted (PointCloud and CloudView alike).
+[[nodiscard]] constexpr bool one_per_point(std::size_t entries, std::size_t points) {
+    return entries != 0 && entries == points;
+}
 
 /// A point cloud in its own units (metres for ROS/PCL/Open3D clouds, or whatever the file holds).
 ///
@@ -37,15 +44,9 @@ struct PointCloud {
 
     [[nodiscard]] std::size_t size() const { return points.size(); }
     [[nodiscard]] bool empty() const { return points.empty(); }
-    [[nodiscard]] bool has_scan_index() const {
-        return !scan_index.empty() && scan_index.size() == points.size();
-    }
-    [[nodiscard]] bool has_labels() const {
-        return !labels.empty() && labels.size() == points.size();
-    }
-    [[nodiscard]] bool has_normals() const {
-        return !normals.empty() && normals.size() == points.size();
-    }
+    [[nodiscard]] bool has_scan_index() const { return one_per_point(scan_index.size(), size()); }
+    [[nodiscard]] bool has_labels() const { return one_per_point(labels.size(), size()); }
+    [[nodiscard]] bool has_normals() const { return one_per_point(normals.size(), size()); }
 };
 
 }  // namespace surfgrow

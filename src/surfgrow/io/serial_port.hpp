@@ -25,8 +25,6 @@ class SerialPort {
     /// passed first. Throws Error(kCannotWrite) when the port fails (the sensor unplugged).
     [[nodiscard]] std::string exchange(std::string_view command);
 
-    [[nodiscard]] const std::filesystem::path& device() const { return device_; }
-
   private:
     std::filesystem::path device_;
     std::chrono::milliseconds timeout_;

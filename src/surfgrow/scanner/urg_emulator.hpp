@@ -36,7 +36,6 @@ class UrgEmulator {
     [[nodiscard]] std::string reply(std::string_view command_line);
 
     [[nodiscard]] bool laser_on() const { return laser_on_; }
-    [[nodiscard]] int distance_replies() const { return sent_; }
 
   private:
     std::string distances(std::string_view echo, std::string_view status, int first, int last,
