@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,27 @@ void expect_same(const RawScan& a, const RawScan& b) {
     EXPECT_EQ(a.pose.matrix(), b.pose.matrix());
     EXPECT_EQ(a.readings_mm, b.readings_mm);
     EXPECT_EQ(a.truth_face_id, b.truth_face_id);
+    EXPECT_EQ(a.tilt_read_deg, b.tilt_read_deg);
+    EXPECT_EQ(a.sensor_time_ms, b.sensor_time_ms);
+    EXPECT_EQ(a.planned_positions, b.planned_positions);
+    EXPECT_EQ(a.note, b.note);
+    EXPECT_EQ(a.stop_reason, b.stop_reason);
+}
+
+// A scan as `surfgrow acquire` records it: read-back angles, time stamps, a note; partial when
+// asked (it planned more positions than it holds).
+RawScan acquired_scan(bool partial) {
+    RawScan r = small_scan(false);
+    for (int i = 0; i < r.spec.tilt.positions; ++i) {
+        r.tilt_read_deg.push_back(r.spec.tilt.tilt_deg(i) + 0.01 * (i % 3));
+        r.sensor_time_ms.push_back(static_cast<std::uint32_t>(100 * i + 16777000) & 0xffffff);
+    }
+    r.note = "sensor: Hokuyo / URG-04LX\nservo: id 1";
+    if (partial) {
+        r.planned_positions = r.spec.tilt.positions + 5;
+        r.stop_reason = "URG: no good reply to GD0044072501 in 3 attempts (time-out)";
+    }
+    return r;
 }
 
 // FNV-1a 64 over all but the last 8 bytes, stored in them (to forge well-formed files).
@@ -88,6 +110,65 @@ TEST(RawScanFormat, RoundTripsWithAndWithoutTruth) {
         write_raw_scan(dir / "scan.sgraw", r);
         expect_same(read_raw_scan(dir / "scan.sgraw"), r);
         EXPECT_EQ(read_bytes(dir / "scan.sgraw"), bytes);
+    }
+}
+
+TEST(RawScanFormat, AcquisitionRecordsRoundTripAsVersionTwo) {
+    for (const bool partial : {false, true}) {
+        const RawScan r = acquired_scan(partial);
+        EXPECT_EQ(r.partial(), partial);
+        const std::string bytes = encode_raw_scan(r);
+        EXPECT_EQ(bytes[8], 2) << "version";
+        expect_same(decode_raw_scan(bytes, "mem"), r);
+        // Every truncation and any flipped byte is refused, never a crash or a short read.
+        for (std::size_t len = bytes.size() - 200; len < bytes.size(); ++len)
+            EXPECT_EQ(code_of([&] { (void)decode_raw_scan(bytes.substr(0, len), "t"); }),
+                      ErrorCode::kMalformedInput)
+                << "length " << len;
+        for (std::size_t at = bytes.size() - 120; at < bytes.size(); at += 7) {
+            std::string bad = bytes;
+            bad[at] = static_cast<char>(bad[at] ^ 0x21);
+            EXPECT_EQ(code_of([&] { (void)decode_raw_scan(bad, "t"); }),
+                      ErrorCode::kMalformedInput)
+                << "flipped byte " << at;
+        }
+    }
+    // Without what only an acquisition records, the file stays version 1: older readers read it.
+    EXPECT_EQ(encode_raw_scan(small_scan(true))[8], 1);
+}
+
+TEST(RawScanFormat, HostileVersionTwoFieldsAreRefused) {
+    const RawScan r = acquired_scan(true);
+    const std::string good = encode_raw_scan(r);
+    // A text length claiming 4 GiB: refused by its bound, nothing allocated.
+    {
+        std::string bad = good;
+        const std::size_t stop_len_at = good.size() - 8 - r.stop_reason.size() - 4;
+        for (int i = 0; i < 4; ++i) bad[stop_len_at + i] = static_cast<char>(0xFF);
+        reseal(bad);
+        EXPECT_EQ(code_of([&] { (void)decode_raw_scan(bad, "t"); }), ErrorCode::kMalformedInput);
+    }
+    // A version-2 flag in a version-1 file, and an unknown flag: refused.
+    for (const char flags : {'\x02', '\x40'}) {
+        std::string bad = encode_raw_scan(small_scan(false));
+        bad[12] = flags;
+        reseal(bad);
+        EXPECT_EQ(code_of([&] { (void)decode_raw_scan(bad, "t"); }), ErrorCode::kMalformedInput)
+            << int(flags);
+    }
+    // Well-formed but meaningless: a NaN angle, a negative plan.
+    RawScan nan_angle = acquired_scan(false);
+    nan_angle.tilt_read_deg[3] = std::nan("");
+    EXPECT_EQ(code_of([&] { (void)encode_raw_scan(nan_angle); }), ErrorCode::kInvalidParameter);
+    {
+        const std::string ok = encode_raw_scan(acquired_scan(false));
+        std::string bad = ok;
+        const std::size_t angle_at = ok.size() - 8 - 8 - r.note.size() - 4 * 12 - 8 * 12;
+        const double nan = std::nan("");
+        std::memcpy(&bad[angle_at], &nan, 8);
+        reseal(bad);
+        EXPECT_EQ(code_of([&] { (void)decode_raw_scan(bad, "t"); }),
+                  ErrorCode::kInvalidParameter);
     }
 }
 
@@ -123,10 +204,13 @@ TEST(RawScanFormat, TruncatedAndCorruptedFilesAreMalformed) {
     reseal(huge);
     EXPECT_EQ(code_of([&] { (void)decode_raw_scan(huge, "t"); }), ErrorCode::kMalformedInput);
     // A version this build does not know.
-    std::string v2 = good;
-    v2[8] = 2;
-    reseal(v2);
-    EXPECT_EQ(code_of([&] { (void)decode_raw_scan(v2, "t"); }), ErrorCode::kMalformedInput);
+    for (const char version : {'\0', '\3', '\x7f'}) {
+        std::string unknown = good;
+        unknown[8] = version;
+        reseal(unknown);
+        EXPECT_EQ(code_of([&] { (void)decode_raw_scan(unknown, "t"); }),
+                  ErrorCode::kMalformedInput);
+    }
     // A ground-truth id below -1.
     std::string ids = good;
     for (int i = 0; i < 4; ++i) ids[ids.size() - 12 + i] = static_cast<char>(0xF0);

@@ -22,8 +22,9 @@ namespace {
 
 }  // namespace
 
-EmulatedPort::EmulatedPort(std::function<std::string(std::string_view)> device)
-    : device_(std::move(device)) {
+EmulatedPort::EmulatedPort(std::function<std::string(std::string_view)> device,
+                           RequestEnd request_end)
+    : device_(std::move(device)), request_end_(std::move(request_end)) {
     master_ = ::posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
     if (master_ < 0) no_pty("posix_openpt");
     char name[128];
@@ -69,6 +70,15 @@ void EmulatedPort::serve() {
             continue;
         }
         if (n <= 0) return;
+        if (request_end_) {
+            line.append(buf, static_cast<std::size_t>(n));
+            for (std::size_t end; (end = request_end_(line)) != 0;) {
+                answer(std::string_view(line).substr(0, end));
+                line.erase(0, end);
+            }
+            if (line.size() > 65536) line.clear();  // no request in sight: noise
+            continue;
+        }
         for (ssize_t k = 0; k < n; ++k) {
             const char c = buf[k];
             if (c != '\n' && c != '\r') {
@@ -76,15 +86,19 @@ void EmulatedPort::serve() {
                 continue;
             }
             if (line.empty()) continue;  // the LF of a CR LF
-            const std::string reply = device_(line);
+            answer(line);
             line.clear();
-            for (std::size_t at = 0; at < reply.size();) {
-                const ssize_t w = ::write(master_, reply.data() + at, reply.size() - at);
-                if (w < 0 && errno == EINTR) continue;
-                if (w <= 0) break;
-                at += static_cast<std::size_t>(w);
-            }
         }
+    }
+}
+
+void EmulatedPort::answer(std::string_view request) {
+    const std::string reply = device_(request);
+    for (std::size_t at = 0; at < reply.size();) {
+        const ssize_t w = ::write(master_, reply.data() + at, reply.size() - at);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) break;
+        at += static_cast<std::size_t>(w);
     }
 }
 

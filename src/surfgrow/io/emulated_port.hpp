@@ -13,9 +13,15 @@ namespace surfgrow::io {
 
 class EmulatedPort {
   public:
-    /// Answers each line written to the port (without its CR/LF) with `device`'s bytes; an
-    /// empty answer sends nothing. Throws Error(kCannotOpen) when no pseudo-terminal is free.
-    explicit EmulatedPort(std::function<std::string(std::string_view)> device);
+    /// Where the first whole request in the bytes written so far ends, or 0 while incomplete.
+    using RequestEnd = std::function<std::size_t(std::string_view pending)>;
+
+    /// Answers each request written to the port with `device`'s bytes; an empty answer sends
+    /// nothing. Without `request_end` a request is a line, passed without its CR/LF (SCIP);
+    /// with it, the request's bytes as written (a servo's packets). Throws Error(kCannotOpen)
+    /// when no pseudo-terminal is free.
+    explicit EmulatedPort(std::function<std::string(std::string_view)> device,
+                          RequestEnd request_end = {});
     /// Closes the port: a program still using it sees a hang-up, as when a sensor is unplugged.
     ~EmulatedPort();
     EmulatedPort(const EmulatedPort&) = delete;
@@ -27,7 +33,10 @@ class EmulatedPort {
   private:
     void serve();
 
+    void answer(std::string_view request);
+
     std::function<std::string(std::string_view)> device_;
+    RequestEnd request_end_;
     std::filesystem::path path_;
     int master_ = -1;
     int wake_[2] = {-1, -1};  // written to by the destructor: ends serve()

@@ -17,6 +17,12 @@ namespace {
 
 constexpr std::array<char, 8> kMagic = {'S', 'G', 'R', 'A', 'W', 'S', 'C', 'N'};
 constexpr std::uint32_t kFlagTruth = 1;
+constexpr std::uint32_t kFlagTiltRead = 2;   // version 2 on
+constexpr std::uint32_t kFlagTimes = 4;      // version 2 on
+constexpr std::uint32_t kFlagPlanned = 8;    // version 2 on
+constexpr std::uint32_t kFlagText = 16;      // version 2 on
+constexpr std::uint32_t kFlagsV1 = kFlagTruth;
+constexpr std::uint32_t kFlagsV2 = kFlagTruth | kFlagTiltRead | kFlagTimes | kFlagPlanned | kFlagText;
 constexpr std::size_t kTrailerBytes = 8;
 
 // FNV-1a, 64 bit: simple, fully specified, catches flipped bits and shuffled blocks.
@@ -58,6 +64,11 @@ class Reader {
     }
     std::int32_t i32() { return static_cast<std::int32_t>(static_cast<std::uint32_t>(u(4))); }
     double f64() { return std::bit_cast<double>(u(8)); }
+    std::string text(std::size_t n) {
+        std::string t(b_.substr(pos_, n));
+        pos_ += n;
+        return t;
+    }
     [[nodiscard]] std::size_t pos() const { return pos_; }
 
   private:
@@ -70,12 +81,20 @@ class Reader {
 std::string encode_raw_scan(const scanner::RawScan& scan) {
     scan.validate();
     const scanner::ScannerSpec& s = scan.spec;
+    const bool text = !scan.note.empty() || !scan.stop_reason.empty();
+    const std::uint32_t flags = (scan.has_truth() ? kFlagTruth : 0) |
+                                (scan.tilt_read_deg.empty() ? 0 : kFlagTiltRead) |
+                                (scan.sensor_time_ms.empty() ? 0 : kFlagTimes) |
+                                (scan.planned_positions == 0 ? 0 : kFlagPlanned) |
+                                (text ? kFlagText : 0);
     const std::size_t total = kRawScanHeaderBytes + 2 * scan.readings_mm.size() +
-                              4 * scan.truth_face_id.size() + kTrailerBytes;
+                              4 * scan.truth_face_id.size() + 8 * scan.tilt_read_deg.size() +
+                              4 * scan.sensor_time_ms.size() + 4 + 8 + scan.note.size() +
+                              scan.stop_reason.size() + kTrailerBytes;
     Writer w(total);
     w.raw(kMagic.data(), kMagic.size());
-    w.u(kRawScanVersion, 4);
-    w.u(scan.has_truth() ? kFlagTruth : 0, 4);
+    w.u((flags & ~kFlagsV1) == 0 ? 1 : kRawScanVersion, 4);
+    w.u(flags, 4);
     w.f64(s.laser.step_deg);
     w.i32(s.laser.first_step);
     w.i32(s.laser.last_step);
@@ -95,6 +114,14 @@ std::string encode_raw_scan(const scanner::RawScan& scan) {
     w.u(scan.readings_mm.size(), 8);
     for (const std::uint16_t v : scan.readings_mm) w.u(v, 2);
     for (const std::int32_t id : scan.truth_face_id) w.i32(id);
+    for (const double deg : scan.tilt_read_deg) w.f64(deg);
+    for (const std::uint32_t ms : scan.sensor_time_ms) w.u(ms, 4);
+    if (flags & kFlagPlanned) w.u(static_cast<std::uint32_t>(scan.planned_positions), 4);
+    if (flags & kFlagText)
+        for (const std::string* t : {&scan.note, &scan.stop_reason}) {
+            w.u(t->size(), 4);
+            w.raw(t->data(), t->size());
+        }
     w.u(fnv1a(w.bytes()), 8);
     return std::move(w.bytes());
 }
@@ -109,12 +136,13 @@ scanner::RawScan decode_raw_scan(std::string_view bytes, std::string_view name) 
         malformed(name, "not a surfgrow raw scan (bad magic; expected SGRAWSCN)");
     Reader r(bytes.substr(kMagic.size()));
     const auto version = r.u(4);
-    if (version != kRawScanVersion)
+    if (version < 1 || version > kRawScanVersion)
         malformed(name, cat({"unsupported raw-scan version ", std::to_string(version),
-                             " (this surfgrow reads version 1)"}));
+                             " (this surfgrow reads versions 1 and 2)"}));
     const auto flags = r.u(4);
-    if ((flags & ~std::uint64_t{kFlagTruth}) != 0)
-        malformed(name, cat({"unknown raw-scan flags ", std::to_string(flags)}));
+    if ((flags & ~std::uint64_t{version == 1 ? kFlagsV1 : kFlagsV2}) != 0)
+        malformed(name, cat({"unknown raw-scan flags ", std::to_string(flags), " for version ",
+                             std::to_string(version)}));
 
     scanner::RawScan scan;
     scanner::ScannerSpec& s = scan.spec;
@@ -149,8 +177,29 @@ scanner::RawScan decode_raw_scan(std::string_view bytes, std::string_view name) 
     if (count != readings)
         malformed(name, cat({"header says ", std::to_string(count), " readings but its spec needs ",
                              std::to_string(readings)}));
-    const std::uint64_t expected =
-        kRawScanHeaderBytes + 2 * readings + ((flags & kFlagTruth) ? 4 * rays : 0) + kTrailerBytes;
+    const auto positions = static_cast<std::uint64_t>(s.tilt.positions);
+    const std::uint64_t fixed = kRawScanHeaderBytes + 2 * readings +
+                                ((flags & kFlagTruth) ? 4 * rays : 0) +
+                                ((flags & kFlagTiltRead) ? 8 * positions : 0) +
+                                ((flags & kFlagTimes) ? 4 * positions : 0) +
+                                ((flags & kFlagPlanned) ? 4 : 0);
+    // The two texts' lengths sit after the fixed part: read them where the file holds them.
+    std::uint64_t text_bytes = 0;
+    if (flags & kFlagText) {
+        for (int t = 0; t < 2; ++t) {
+            const std::uint64_t at = fixed + 4 * t + text_bytes;
+            if (bytes.size() < at + 4 + kTrailerBytes)
+                malformed(name, cat({"truncated raw scan: ", std::to_string(bytes.size()),
+                                     " bytes, its text needs more"}));
+            const std::uint64_t len = Reader(bytes.substr(at)).u(4);
+            if (len > scanner::kMaxRawScanNoteBytes)
+                malformed(name, cat({"raw-scan text of ", std::to_string(len), " bytes (at most ",
+                                     std::to_string(scanner::kMaxRawScanNoteBytes), ")"}));
+            text_bytes += len;
+        }
+        text_bytes += 8;
+    }
+    const std::uint64_t expected = fixed + text_bytes + kTrailerBytes;
     if (bytes.size() != expected)
         malformed(name, cat({bytes.size() < expected ? "truncated raw scan: " : "raw scan has ",
                              std::to_string(bytes.size()), " bytes where its header needs ",
@@ -176,6 +225,24 @@ scanner::RawScan decode_raw_scan(std::string_view bytes, std::string_view name) 
                 malformed(name, cat({"ground-truth face id ", std::to_string(id), " < -1"}));
         }
     }
+    if (flags & kFlagTiltRead) {
+        scan.tilt_read_deg.resize(positions);
+        for (auto& deg : scan.tilt_read_deg) deg = data.f64();
+    }
+    if (flags & kFlagTimes) {
+        scan.sensor_time_ms.resize(positions);
+        for (auto& ms : scan.sensor_time_ms) ms = static_cast<std::uint32_t>(data.u(4));
+    }
+    if (flags & kFlagPlanned) scan.planned_positions = static_cast<int>(data.u(4));
+    if (flags & kFlagText) {
+        scan.note = data.text(data.u(4));
+        scan.stop_reason = data.text(data.u(4));
+    }
+    try {
+        scan.validate();  // the read-back angles and the plan
+    } catch (const Error& e) {
+        detail::rethrow_in(name, e);
+    }
     return scan;
 }
 
@@ -192,9 +259,11 @@ void write_raw_scan(const std::filesystem::path& path, const scanner::RawScan& s
 }
 
 scanner::RawScan read_raw_scan(const std::filesystem::path& path) {
-    // The largest valid file: 2^28 readings and their truth ids.
+    // The largest valid file: 2^28 readings, their truth ids, 20000 positions' angles and time
+    // stamps, the plan and two texts.
     constexpr std::size_t kMaxBytes = kRawScanHeaderBytes + 2 * scanner::kMaxReadingsPerScan +
-                                      4 * scanner::kMaxReadingsPerScan + kTrailerBytes;
+                                      4 * scanner::kMaxReadingsPerScan + 12 * 20000 + 4 + 8 +
+                                      2 * scanner::kMaxRawScanNoteBytes + kTrailerBytes;
     const std::string bytes = detail::read_file_capped(path, kMaxBytes, "a raw scan");
     return decode_raw_scan(bytes, path.string());
 }

@@ -11,7 +11,10 @@
 
 namespace surfgrow::io {
 
-inline constexpr std::uint32_t kRawScanVersion = 1;
+/// Version 1: readings and ground truth. Version 2 adds what an acquisition records (read-back
+/// tilt angles, sensor time stamps, a partial scan's plan, its note and stop reason); a scan
+/// without them is written as version 1, so older readers keep reading simulated scans.
+inline constexpr std::uint32_t kRawScanVersion = 2;
 /// Bytes before the readings: magic, version, flags, spec, pose, reading count.
 inline constexpr std::size_t kRawScanHeaderBytes = 240;
 

@@ -7,6 +7,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <utility>
 
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
@@ -27,18 +28,30 @@ speed_t speed_of(int baud) {
             return B57600;
         case 115200:
             return B115200;
+        case 230400:
+            return B230400;
+        case 460800:
+            return B460800;
+        case 1000000:
+            return B1000000;
         default:
             throw Error(ErrorCode::kInvalidParameter,
                         cat({"serial speed ", std::to_string(baud),
-                             " is not 9600, 19200, 38400, 57600 or 115200"}));
+                             " is not 9600, 19200, 38400, 57600, 115200, 230400, 460800 or "
+                             "1000000"}));
     }
 }
 
 }  // namespace
 
 SerialPort::SerialPort(const std::filesystem::path& device, int baud,
-                       std::chrono::milliseconds timeout)
-    : device_(device), timeout_(timeout) {
+                       std::chrono::milliseconds timeout, ReplyEnd reply_end)
+    : device_(device), timeout_(timeout), reply_end_(std::move(reply_end)) {
+    if (!reply_end_)
+        reply_end_ = [](std::string_view in) {
+            const std::size_t end = in.find("\n\n");
+            return end == std::string_view::npos ? 0 : end + 2;
+        };
     const speed_t speed = speed_of(baud);
     fd_ = ::open(device.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
     if (fd_ < 0)
@@ -83,8 +96,8 @@ std::string SerialPort::exchange(std::string_view command) {
     std::string in;
     const auto deadline = std::chrono::steady_clock::now() + timeout_;
     for (;;) {
-        const std::size_t end = in.find("\n\n");
-        if (end != std::string::npos) return in.substr(0, end + 2);
+        const std::size_t end = reply_end_(in);
+        if (end != 0) return in.substr(0, end);
         const auto left = std::chrono::ceil<std::chrono::milliseconds>(
             deadline - std::chrono::steady_clock::now());
         if (left.count() <= 0) return {};

@@ -62,6 +62,13 @@ std::string packet(std::uint8_t id, std::uint8_t instruction, std::string_view p
     return out;
 }
 
+std::size_t packet_end(std::string_view bytes) {
+    const std::size_t h = bytes.find(std::string_view(kHeader, sizeof kHeader));
+    if (h == std::string_view::npos || bytes.size() < h + 7) return 0;
+    const std::size_t end = h + 7 + from_le(bytes.substr(h + 5, 2));
+    return bytes.size() >= end ? end : 0;
+}
+
 Packet parse(std::string_view bytes) {
     if (bytes.size() < 10 || bytes.substr(0, 4) != std::string_view(kHeader, 4))
         throw ServoError("servo packet: no FF FF FD 00 header in " + std::to_string(bytes.size()) +

@@ -50,6 +50,10 @@ struct Packet {
     std::string params;
 };
 
+/// Where the first whole packet in `bytes` ends (bytes before its header included), or 0 while
+/// it is still incomplete: how a port reading a byte stream cuts it into packets.
+[[nodiscard]] std::size_t packet_end(std::string_view bytes);
+
 /// Parses one whole packet. Throws ServoError for a bad header, length or CRC, or bytes left.
 [[nodiscard]] Packet parse(std::string_view bytes);
 

@@ -51,7 +51,15 @@ PointCloud fuse_scans(std::span<const RawScan> scans, const FuseOptions& options
             return 0;
         });
         const RangeFilter filter = for_scan(k, [&] { return make_filter(scan, options); });
-        const TiltingScanner scanner(scan.spec);
+        if (scan.partial() && !options.allow_partial)
+            throw Error(ErrorCode::kInvalidParameter,
+                        cat({"scan ", std::to_string(k), " is partial: ",
+                             std::to_string(scan.spec.tilt.positions), " of ",
+                             std::to_string(scan.planned_positions),
+                             " tilt positions (the acquisition stopped early",
+                             scan.stop_reason.empty() ? "" : ": ", scan.stop_reason,
+                             "); allow partial scans to use it"}));
+        const TiltingScanner scanner(scan.spec, scan.tilt_read_deg);
         const std::size_t rays = scan.spec.rays();
         std::vector<double> range_mm(rays);
 #pragma omp parallel for schedule(static) num_threads(resolve_threads(0))

@@ -13,19 +13,23 @@ struct FuseOptions {
     int trim_q = 1;                  ///< q of eq. (1): readings dropped from each end
     std::uint16_t min_range_mm = 0;  ///< 0: each scan's laser limit; else within it, mm
     std::uint16_t max_range_mm = 0;  ///< 0: each scan's laser limit; else within it, mm
+    /// A partial scan (RawScan::partial: the acquisition stopped early) is refused unless set.
+    bool allow_partial = false;
 };
 
 /// Fuses scans taken at known poses into one cloud, in metres, world frame.
 ///
 /// Each ray's readings go through RangeFilter (eq. 1); a ray with a range becomes the point
-/// pose * TiltingScanner::to_sensor(tilt, step, range). Points are ordered scan by scan, ray by
+/// pose * TiltingScanner::to_sensor(tilt, step, range), at the servo's read-back angle where the
+/// scan recorded one. Points are ordered scan by scan, ray by
 /// ray. For every point scan_index holds its scan's position in `scans`; scan_origins[k] is scan
 /// k's sensor origin (its pose's translation) so normals can be turned toward the sensor. With a
 /// single scan, viewpoint is that origin too. When every scan carries ground truth, labels holds
 /// each point's true face id (-1 for none or a mixed pixel); otherwise labels stays empty.
 ///
 /// Throws Error(kInvalidParameter) naming the scan if a scan is invalid, n <= 2q, or a range
-/// limit lies outside the scan's laser limits (or min >= max).
+/// limit lies outside the scan's laser limits (or min >= max), or a scan is partial and
+/// options.allow_partial is not set.
 [[nodiscard]] PointCloud fuse_scans(std::span<const RawScan> scans,
                                     const FuseOptions& options = {});
 

@@ -25,6 +25,8 @@ class ServoDriver {
     /// back (degrees). Throws ServoError when it does not stop within the polls (stalled).
     double tilt_to(double deg);
 
+    [[nodiscard]] std::uint8_t id() const { return id_; }
+
   private:
     std::string exchange(std::uint8_t instruction, const std::string& params, const char* what);
     std::uint32_t read(Address a, const char* what);

@@ -1,12 +1,27 @@
 #include "surfgrow/scanner/tilting_scanner.hpp"
 
 #include <cmath>
+#include <string>
 #include <utility>
+
+#include "surfgrow/core/error.hpp"
+#include "surfgrow/core/text.hpp"
 
 namespace surfgrow::scanner {
 
-TiltingScanner::TiltingScanner(ScannerSpec spec) : spec_(std::move(spec)) {
+TiltingScanner::TiltingScanner(ScannerSpec spec) : TiltingScanner(std::move(spec), {}) {}
+
+TiltingScanner::TiltingScanner(ScannerSpec spec, std::span<const double> tilt_deg)
+    : spec_(std::move(spec)) {
     spec_.validate();
+    if (!tilt_deg.empty() && tilt_deg.size() != static_cast<std::size_t>(tilt_count()))
+        throw Error(ErrorCode::kInvalidParameter,
+                    cat({std::to_string(tilt_deg.size()), " tilt angles for ",
+                         std::to_string(tilt_count()), " tilt positions"}));
+    tilt_deg_.resize(static_cast<std::size_t>(tilt_count()));
+    for (int i = 0; i < tilt_count(); ++i)
+        tilt_deg_[static_cast<std::size_t>(i)] =
+            tilt_deg.empty() ? spec_.tilt.tilt_deg(i) : tilt_deg[static_cast<std::size_t>(i)];
     tilt_rot_.reserve(static_cast<std::size_t>(tilt_count()));
     for (int i = 0; i < tilt_count(); ++i) {
         const double t = tilt_rad(i);
@@ -24,7 +39,7 @@ TiltingScanner::TiltingScanner(ScannerSpec spec) : spec_(std::move(spec)) {
 }
 
 double TiltingScanner::tilt_rad(int tilt) const {
-    return deg_to_rad(spec_.tilt.tilt_deg(tilt));
+    return deg_to_rad(tilt_deg_[static_cast<std::size_t>(tilt)]);
 }
 
 double TiltingScanner::pan_rad(int step) const {

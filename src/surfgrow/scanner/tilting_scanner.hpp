@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "surfgrow/core/geometry.hpp"
@@ -30,6 +31,10 @@ class TiltingScanner {
   public:
     /// Throws Error(kInvalidParameter) if the spec is invalid.
     explicit TiltingScanner(ScannerSpec spec = {});
+    /// Tilt position i at `tilt_deg[i]` (the servo's read-back angles) instead of the spec's
+    /// planned angle; an empty span means the plan. Throws Error(kInvalidParameter) if the spec
+    /// is invalid or the angles are not one per position.
+    TiltingScanner(ScannerSpec spec, std::span<const double> tilt_deg);
 
     [[nodiscard]] const ScannerSpec& spec() const { return spec_; }
     [[nodiscard]] int tilt_count() const { return spec_.tilt.positions; }
@@ -65,6 +70,7 @@ class TiltingScanner {
 
   private:
     ScannerSpec spec_;
+    std::vector<double> tilt_deg_;
     std::vector<Mat3d> tilt_rot_;
     std::vector<double> pan_cos_;
     std::vector<double> pan_sin_;

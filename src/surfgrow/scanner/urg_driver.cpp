@@ -124,6 +124,7 @@ std::vector<std::uint32_t> UrgDriver::scan(int first, int last) {
         std::vector<std::uint32_t> mm;
         try {
             mm = r.distances(3);
+            last_time_stamp_ms_ = r.time_stamp();
         } catch (const scip::ProtocolError& e) {
             throw DeviceError("URG: " + code + ": " + e.what());
         }

@@ -52,6 +52,9 @@ class UrgDriver {
     /// Turns the laser off (QT). Throws DeviceError.
     void close();
 
+    /// The sensor's time stamp (ms, 24 bits) of the last scan() returned.
+    [[nodiscard]] std::uint32_t last_time_stamp_ms() const { return last_time_stamp_ms_; }
+
     /// Commands sent again after a lost or damaged reply, so far.
     [[nodiscard]] int retries() const { return retries_; }
 
@@ -63,6 +66,7 @@ class UrgDriver {
     int attempts_;
     int retries_ = 0;
     unsigned next_tag_ = 0;
+    std::uint32_t last_time_stamp_ms_ = 0;
 };
 
 }  // namespace surfgrow::scanner

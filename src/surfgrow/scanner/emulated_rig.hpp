@@ -1,0 +1,62 @@
+// The whole scanning tool without hardware: an emulated URG whose sweeps the simulator casts at
+// the angle an emulated servo actually reached, so an acquisition through the real drivers (and,
+// with ports, the real serial path) yields a scan with ground truth, faults included on demand.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "surfgrow/scanner/noise_model.hpp"
+#include "surfgrow/scanner/pose.hpp"
+#include "surfgrow/scanner/scan_simulator.hpp"
+#include "surfgrow/scanner/scanner_spec.hpp"
+#include "surfgrow/scanner/scene.hpp"
+#include "surfgrow/scanner/servo_emulator.hpp"
+#include "surfgrow/scanner/urg_emulator.hpp"
+
+namespace surfgrow::scanner {
+
+class EmulatedRig {
+  public:
+    /// `spec`: the laser (within the URG-04LX's steps 44..725, front 384), the tilt plan's step
+    /// (the sweep's neighbours for mixed pixels), n, the optical offset. `pose`: where the rig
+    /// stands in `scene`, which must outlive it. Sweep k at a servo position draws its noise from
+    /// mix_seed(seed, k). Throws Error(kInvalidParameter) for a spec the URG cannot have.
+    EmulatedRig(const Scene& scene, const ScannerSpec& spec, const NoiseModel& noise,
+                const Pose& pose, std::uint64_t seed, const UrgFaults& urg_faults = {},
+                const dxl::ServoFaults& servo_faults = {}, std::uint8_t servo_id = 1);
+
+    /// The sensor's bytes for a SCIP command line; the servo's for an instruction packet. Safe
+    /// to call from the two ports' threads.
+    [[nodiscard]] std::string urg_reply(std::string_view line);
+    [[nodiscard]] std::string servo_reply(std::string_view packet);
+
+    /// The ground-truth face id of every step of spec.laser for the servo position of `deg`
+    /// (a read-back angle); empty if no sweep was taken there.
+    [[nodiscard]] std::vector<std::int32_t> truth_at(double deg) const;
+
+  private:
+    // The n readings of every step of a sweep at the servo's present position, simulated once
+    // per position; the k-th request there gets reading k (mod n).
+    std::vector<std::uint32_t> sweep();
+
+    const Scene& scene_;
+    ScannerSpec spec_;
+    NoiseModel noise_;
+    Pose pose_;
+    std::uint64_t seed_;
+    mutable std::mutex mutex_;
+    UrgEmulator urg_;
+    dxl::ServoEmulator servo_;
+    std::int32_t cached_ticks_ = -1;  // the position the cached readings belong to
+    std::uint64_t sweeps_ = 0;        // positions simulated so far
+    std::vector<std::uint16_t> readings_;  // n per step at cached_ticks_
+    int served_ = 0;                       // readings served at cached_ticks_
+    std::map<std::int32_t, std::vector<std::int32_t>> truth_;  // by servo ticks
+};
+
+}  // namespace surfgrow::scanner
