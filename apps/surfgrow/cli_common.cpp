@@ -88,6 +88,27 @@ double parse_length_m(std::string_view text, std::string_view option) {
     return checked_length(value * scale, text, option);
 }
 
+double parse_angle_deg(std::string_view text, std::string_view option) {
+    double value = 0;
+    std::string_view unit;
+    if (!split_number(text, value, unit, option))
+        usage_error(option, {"'", text, "' is not an angle (expected e.g. 0.5deg)"});
+    // "a/b": a step like 1/3 deg is exact only as a fraction.
+    if (!unit.empty() && unit.front() == '/') {
+        double divisor = 0;
+        std::string_view rest;
+        if (!split_number(unit.substr(1), divisor, rest, option) || divisor == 0)
+            usage_error(option, {"'", text, "' is not an angle (expected e.g. 1/3deg)"});
+        value /= divisor;
+        unit = rest;
+    }
+    if (unit.empty())
+        usage_error(option, {"'", text, "' has no unit; write e.g. ", trim(text), "deg"});
+    if (unit == "deg") return value;
+    if (unit == "rad") return value * 180.0 / 3.14159265358979323846;
+    usage_error(option, {"unknown angle unit '", unit, "' (use deg or rad)"});
+}
+
 double unit_to_metres(std::string_view unit, std::string_view option) {
     double scale = 1;
     if (!unit_scale(trim(unit), scale))

@@ -30,6 +30,11 @@ void add_count_option(CLI::App& cmd, const std::string& name, long long& count,
 /// factor of 1000 is worse than a short error. Throws Error(kUsage) naming `option`.
 double parse_length_m(std::string_view text, std::string_view option);
 
+/// Parses an angle with its unit ("0.5deg", "1/3deg", "0.01rad") into degrees. A bare number
+/// is refused, as for lengths. Throws Error(kUsage) naming `option`; Error(kInvalidParameter)
+/// for a number beyond a double or not finite.
+double parse_angle_deg(std::string_view text, std::string_view option);
+
 /// Metres per unit of a cloud: "m" -> 1, "cm" -> 0.01, "mm" -> 0.001. Throws Error(kUsage).
 double unit_to_metres(std::string_view unit, std::string_view option);
 

@@ -54,6 +54,7 @@ void add_scan2cloud_command(CLI::App& app) {
         int trim = 1;
         std::string min_range;
         std::string max_range;
+        bool allow_partial = false;
         bool quiet = false;
     };
     auto args = std::make_shared<Args>();
@@ -71,6 +72,8 @@ void add_scan2cloud_command(CLI::App& app) {
                     "Drop readings nearer than this (default: the scan's laser limit)");
     cmd->add_option("--max-range", args->max_range,
                     "Drop readings farther than this (default: the scan's laser limit)");
+    cmd->add_flag("--allow-partial", args->allow_partial,
+                  "Fuse scans an acquisition left partial (a device failed mid-scan)");
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
     cmd->callback([args] {
         args->raws = raw_scan_files(args->raws);
@@ -95,6 +98,15 @@ void add_scan2cloud_command(CLI::App& app) {
                 throw Error(e.code(), cat({args->raws[k], ": ", e.what()}));
             }
         }
+        fuse.allow_partial = args->allow_partial;
+        for (std::size_t k = 0; k < raws.size(); ++k)
+            if (raws[k].partial() && !fuse.allow_partial)
+                throw Error(ErrorCode::kInvalidParameter,
+                            cat({args->raws[k], ": a partial scan (",
+                                 std::to_string(raws[k].spec.tilt.positions), " of ",
+                                 std::to_string(raws[k].planned_positions),
+                                 " tilt positions; it stopped: ", raws[k].stop_reason,
+                                 "); --allow-partial fuses it"}));
         const PointCloud cloud = scanner::fuse_scans(raws, fuse);
         io::WriteOptions options;
         options.write_scans = true;

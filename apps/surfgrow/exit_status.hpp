@@ -14,6 +14,9 @@ enum class Outcome : int {
     /// A bound given to `eval --require` (or `demo`) does not hold; the evaluation is written.
     kRequirementFailed = 9,
     kCollision = 10,  ///< `collide --fail-on-collision`: a robot link is too close
+    /// `acquire`: the sensor or the servo failed (no reply, damaged replies, stalled); what was
+    /// taken before is written, marked partial.
+    kDeviceFailed = 11,
 };
 
 /// Thrown by a command for an Outcome, with the message it prints.

@@ -38,26 +38,12 @@ bool all_digits(std::string_view s) {
     return true;
 }
 
-// A scene file when it names one (or looks like one); a built-in scene otherwise.
-scanner::SceneDescription load_scene(const std::string& name) {
-    if (name.ends_with(".json") || name.find('/') != std::string::npos || fs::is_regular_file(name))
-        return io::read_scene_file(name);
-    return scanner::builtin_scene(name);
-}
-
 std::vector<scanner::Pose> load_poses(const std::string& poses, const scanner::ScanPath& path) {
     if (!all_digits(poses)) return io::read_poses_file(poses);
     int count = 0;  // "00001" is 1; beyond int is too many (scan_poses checks the rest)
     if (std::from_chars(poses.data(), poses.data() + poses.size(), count).ec != std::errc())
         invalid(cat({"--poses ", poses, ": at most 1000 poses"}));
     return scanner::scan_poses(path, count);
-}
-
-scanner::NoiseModel noise_model(const std::string& name) {
-    if (name == "datasheet") return {};
-    if (name == "ideal") return scanner::NoiseModel::ideal();
-    throw Error(ErrorCode::kUsage,
-                cat({"--noise: unknown model '", name, "' (use datasheet or ideal)"}));
 }
 
 // A range limit in whole millimetres, or 0 for "the laser's own".
@@ -69,6 +55,26 @@ std::uint16_t range_mm(const std::string& text, const char* option) {
     return static_cast<std::uint16_t>(mm);
 }
 
+std::string json_text(const nlohmann::json& j) {
+    return j.dump(2) + "\n";
+}
+
+}  // namespace
+
+// A scene file when it names one (or looks like one); a built-in scene otherwise.
+scanner::SceneDescription load_scene(const std::string& name) {
+    if (name.ends_with(".json") || name.find('/') != std::string::npos || fs::is_regular_file(name))
+        return io::read_scene_file(name);
+    return scanner::builtin_scene(name);
+}
+
+scanner::NoiseModel noise_model(const std::string& name) {
+    if (name == "datasheet") return {};
+    if (name == "ideal") return scanner::NoiseModel::ideal();
+    throw Error(ErrorCode::kUsage,
+                cat({"--noise: unknown model '", name, "' (use datasheet or ideal)"}));
+}
+
 // The optical centre's height above the tilt axis, metres: "0" alone is accepted (no unit needed
 // for nothing), anything else needs its unit.
 double optical_offset_m(const std::string& text) {
@@ -78,12 +84,6 @@ double optical_offset_m(const std::string& text) {
         invalid(cat({"--optical-offset ", text, " must be under 1 m in size"}));
     return m;
 }
-
-std::string json_text(const nlohmann::json& j) {
-    return j.dump(2) + "\n";
-}
-
-}  // namespace
 
 void ScanSettings::add_to(CLI::App& cmd) {
     cmd.add_option("--scene", scene,

@@ -10,6 +10,7 @@
 
 #include "surfgrow/core/point_cloud.hpp"
 #include "surfgrow/scanner/fuse.hpp"
+#include "surfgrow/scanner/noise_model.hpp"
 #include "surfgrow/scanner/raw_scan.hpp"
 #include "surfgrow/scanner/scene.hpp"
 
@@ -45,6 +46,17 @@ struct ScanData {
     double simulate_seconds = 0.0;
     double fuse_seconds = 0.0;
 };
+
+/// A scene file when `name` names one (or looks like one: .json, a path); a built-in scene
+/// otherwise. Throws surfgrow::Error.
+scanner::SceneDescription load_scene(const std::string& name);
+
+/// The sensor model called `name`: "datasheet" (URG-04LX) or "ideal". Throws Error(kUsage).
+scanner::NoiseModel noise_model(const std::string& name);
+
+/// The optical centre's height above the tilt axis in metres: "0" alone needs no unit, anything
+/// else does; under 1 m in size. Throws Error(kUsage) or Error(kInvalidParameter).
+double optical_offset_m(const std::string& text);
 
 /// Fusing limits and trim from the settings, checked against `laser` before any work is done.
 /// Throws Error(kUsage) for a length without unit, Error(kInvalidParameter) for n <= 2q or limits

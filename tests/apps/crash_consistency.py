@@ -198,6 +198,8 @@ ROBOT = ('{"units": "m", "links": [{"name": "tool", "type": "sphere", '
 def cases():
     grown = ["grow", "../box.xyz", "--mu", "40mm", "-q", "-o", "out"]
     scan = ["scan", "--scene", "room-corner", "--poses", "1", "--max-range", "1.5m", "-q"]
+    acquire = ["acquire", "--emulate", "room-corner", "--tilt", "-10deg:10deg:1deg",
+               "--readings", "3", "-q"]
     return [
         Case("grow", "out", [grown], ["grow", "../box.xyz", "--mu", "40mm", "--seed", "7",
                                       "-q", "-o", "out"]),
@@ -216,6 +218,8 @@ def cases():
         Case("scan2cloud", "one.ply", [scan + ["-o", "truth"],
                                        ["scan2cloud", "truth/scan-000.sgraw", "-o", "one.ply"]],
              ["scan2cloud", "truth/scan-000.sgraw", "--max-range", "1m", "-o", "one.ply"]),
+        Case("acquire", "one.sgraw", [acquire + ["-o", "one.sgraw"]],
+             acquire + ["--seed", "2", "-o", "one.sgraw"], writes=False),
         Case("sweep", "sweep", [["sweep", "../box.xyz", "--mu", "30mm:60mm", "--steps", "2",
                                  "--min-pts", "10", "-q", "-o", "sweep"]],
              ["sweep", "../box.xyz", "--mu", "30mm:60mm", "--steps", "2", "--min-pts", "5,10",

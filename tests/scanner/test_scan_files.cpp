@@ -128,8 +128,7 @@ TEST(RawScanFormat, AcquisitionRecordsRoundTripAsVersionTwo) {
         for (std::size_t at = bytes.size() - 120; at < bytes.size(); at += 7) {
             std::string bad = bytes;
             bad[at] = static_cast<char>(bad[at] ^ 0x21);
-            EXPECT_EQ(code_of([&] { (void)decode_raw_scan(bad, "t"); }),
-                      ErrorCode::kMalformedInput)
+            EXPECT_EQ(code_of([&] { (void)decode_raw_scan(bad, "t"); }), ErrorCode::kMalformedInput)
                 << "flipped byte " << at;
         }
     }
@@ -167,8 +166,7 @@ TEST(RawScanFormat, HostileVersionTwoFieldsAreRefused) {
         const double nan = std::nan("");
         std::memcpy(&bad[angle_at], &nan, 8);
         reseal(bad);
-        EXPECT_EQ(code_of([&] { (void)decode_raw_scan(bad, "t"); }),
-                  ErrorCode::kInvalidParameter);
+        EXPECT_EQ(code_of([&] { (void)decode_raw_scan(bad, "t"); }), ErrorCode::kInvalidParameter);
     }
 }
 

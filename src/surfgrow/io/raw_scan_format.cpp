@@ -17,12 +17,13 @@ namespace {
 
 constexpr std::array<char, 8> kMagic = {'S', 'G', 'R', 'A', 'W', 'S', 'C', 'N'};
 constexpr std::uint32_t kFlagTruth = 1;
-constexpr std::uint32_t kFlagTiltRead = 2;   // version 2 on
-constexpr std::uint32_t kFlagTimes = 4;      // version 2 on
-constexpr std::uint32_t kFlagPlanned = 8;    // version 2 on
-constexpr std::uint32_t kFlagText = 16;      // version 2 on
+constexpr std::uint32_t kFlagTiltRead = 2;  // version 2 on
+constexpr std::uint32_t kFlagTimes = 4;     // version 2 on
+constexpr std::uint32_t kFlagPlanned = 8;   // version 2 on
+constexpr std::uint32_t kFlagText = 16;     // version 2 on
 constexpr std::uint32_t kFlagsV1 = kFlagTruth;
-constexpr std::uint32_t kFlagsV2 = kFlagTruth | kFlagTiltRead | kFlagTimes | kFlagPlanned | kFlagText;
+constexpr std::uint32_t kFlagsV2 =
+    kFlagTruth | kFlagTiltRead | kFlagTimes | kFlagPlanned | kFlagText;
 constexpr std::size_t kTrailerBytes = 8;
 
 // FNV-1a, 64 bit: simple, fully specified, catches flipped bits and shuffled blocks.
@@ -82,11 +83,10 @@ std::string encode_raw_scan(const scanner::RawScan& scan) {
     scan.validate();
     const scanner::ScannerSpec& s = scan.spec;
     const bool text = !scan.note.empty() || !scan.stop_reason.empty();
-    const std::uint32_t flags = (scan.has_truth() ? kFlagTruth : 0) |
-                                (scan.tilt_read_deg.empty() ? 0 : kFlagTiltRead) |
-                                (scan.sensor_time_ms.empty() ? 0 : kFlagTimes) |
-                                (scan.planned_positions == 0 ? 0 : kFlagPlanned) |
-                                (text ? kFlagText : 0);
+    const std::uint32_t flags =
+        (scan.has_truth() ? kFlagTruth : 0) | (scan.tilt_read_deg.empty() ? 0 : kFlagTiltRead) |
+        (scan.sensor_time_ms.empty() ? 0 : kFlagTimes) |
+        (scan.planned_positions == 0 ? 0 : kFlagPlanned) | (text ? kFlagText : 0);
     const std::size_t total = kRawScanHeaderBytes + 2 * scan.readings_mm.size() +
                               4 * scan.truth_face_id.size() + 8 * scan.tilt_read_deg.size() +
                               4 * scan.sensor_time_ms.size() + 4 + 8 + scan.note.size() +
@@ -178,11 +178,10 @@ scanner::RawScan decode_raw_scan(std::string_view bytes, std::string_view name) 
         malformed(name, cat({"header says ", std::to_string(count), " readings but its spec needs ",
                              std::to_string(readings)}));
     const auto positions = static_cast<std::uint64_t>(s.tilt.positions);
-    const std::uint64_t fixed = kRawScanHeaderBytes + 2 * readings +
-                                ((flags & kFlagTruth) ? 4 * rays : 0) +
-                                ((flags & kFlagTiltRead) ? 8 * positions : 0) +
-                                ((flags & kFlagTimes) ? 4 * positions : 0) +
-                                ((flags & kFlagPlanned) ? 4 : 0);
+    const std::uint64_t fixed =
+        kRawScanHeaderBytes + 2 * readings + ((flags & kFlagTruth) ? 4 * rays : 0) +
+        ((flags & kFlagTiltRead) ? 8 * positions : 0) + ((flags & kFlagTimes) ? 4 * positions : 0) +
+        ((flags & kFlagPlanned) ? 4 : 0);
     // The two texts' lengths sit after the fixed part: read them where the file holds them.
     std::uint64_t text_bytes = 0;
     if (flags & kFlagText) {

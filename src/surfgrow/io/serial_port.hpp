@@ -28,7 +28,8 @@ class SerialPort {
 
     /// Drops whatever arrived unasked (the tail of a reply given up on), writes `command`, and
     /// returns the bytes up to the reply's end (SCIP: its empty line included); empty when the
-    /// time-out passed first. Throws Error(kCannotWrite) when the port fails (the sensor unplugged).
+    /// time-out passed first. Throws Error(kCannotWrite) when the port fails (the sensor
+    /// unplugged).
     [[nodiscard]] std::string exchange(std::string_view command);
 
   private:

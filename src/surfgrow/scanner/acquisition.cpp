@@ -53,7 +53,8 @@ RawScan acquire_scan(UrgDriver& urg, dxl::ServoDriver& servo, const ScannerSpec&
                 const std::vector<std::uint32_t> mm = urg.scan(laser.first_step, laser.last_step);
                 if (k == 0) time_ms = urg.last_time_stamp_ms();
                 for (std::size_t j = 0; j < steps; ++j)  // 18-bit values beyond 65535 mm: no range
-                    position[j * n + k] = static_cast<std::uint16_t>(std::min<std::uint32_t>(mm[j], 65535));
+                    position[j * n + k] =
+                        static_cast<std::uint16_t>(std::min<std::uint32_t>(mm[j], 65535));
             }
         } catch (const std::runtime_error& e) {  // DeviceError, dxl::ServoError
             if (i == 0) throw;

@@ -25,8 +25,7 @@ using AcquisitionProgress = std::function<void(int done, int planned)>;
 /// A device that fails mid-scan (DeviceError, dxl::ServoError after the drivers' retries) ends
 /// the scan: what was taken is returned, marked partial (RawScan::partial, stop_reason says
 /// why). A failure before the first position is complete is thrown as it came.
-[[nodiscard]] RawScan acquire_scan(UrgDriver& urg, dxl::ServoDriver& servo,
-                                   const ScannerSpec& spec, const Pose& pose,
-                                   const AcquisitionProgress& progress = {});
+[[nodiscard]] RawScan acquire_scan(UrgDriver& urg, dxl::ServoDriver& servo, const ScannerSpec& spec,
+                                   const Pose& pose, const AcquisitionProgress& progress = {});
 
 }  // namespace surfgrow::scanner

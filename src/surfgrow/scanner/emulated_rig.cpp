@@ -3,7 +3,6 @@
 #include <string>
 
 #include "surfgrow/core/error.hpp"
-#include "surfgrow/core/random.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/scanner/dynamixel.hpp"
 
@@ -24,12 +23,12 @@ EmulatedRig::EmulatedRig(const Scene& scene, const ScannerSpec& spec, const Nois
     const LaserSpec& l = spec_.laser;
     if (l.first_step < UrgEmulator::kFirstStep || l.last_step > UrgEmulator::kLastStep ||
         l.front_step != UrgEmulator::kFrontStep)
-        throw Error(ErrorCode::kInvalidParameter,
-                    cat({"the emulated URG-04LX measures steps ",
-                         std::to_string(UrgEmulator::kFirstStep), "..",
-                         std::to_string(UrgEmulator::kLastStep), " around front step ",
-                         std::to_string(UrgEmulator::kFrontStep),
-                         "; this laser asks for others (use urg04lx-682)"}));
+        throw Error(
+            ErrorCode::kInvalidParameter,
+            cat({"the emulated URG-04LX measures steps ", std::to_string(UrgEmulator::kFirstStep),
+                 "..", std::to_string(UrgEmulator::kLastStep), " around front step ",
+                 std::to_string(UrgEmulator::kFrontStep),
+                 "; this laser asks for others (use urg04lx-682)"}));
 }
 
 std::string EmulatedRig::urg_reply(std::string_view line) {
@@ -59,11 +58,13 @@ std::vector<std::uint32_t> EmulatedRig::sweep() {  // called by urg_ under mutex
         s.tilt.first_deg = dxl::degrees_of(ticks) - s.tilt.step_deg;
         s.tilt.positions = 3;
         const ScanSimulator sim(scene_, s, noise_);
-        SimulatedScan rows = sim.simulate(pose_, mix_seed(seed_, sweeps_++));
+        const std::uint64_t first_stream = sweeps_++ * 3 * steps;
+        const SimulatedScan rows = sim.simulate(pose_, seed_, first_stream);
         readings_.assign(rows.raw.readings_mm.begin() + static_cast<std::ptrdiff_t>(steps * n),
                          rows.raw.readings_mm.begin() + static_cast<std::ptrdiff_t>(2 * steps * n));
-        truth_[ticks].assign(rows.raw.truth_face_id.begin() + static_cast<std::ptrdiff_t>(steps),
-                             rows.raw.truth_face_id.begin() + static_cast<std::ptrdiff_t>(2 * steps));
+        truth_[ticks].assign(
+            rows.raw.truth_face_id.begin() + static_cast<std::ptrdiff_t>(steps),
+            rows.raw.truth_face_id.begin() + static_cast<std::ptrdiff_t>(2 * steps));
         cached_ticks_ = ticks;
         served_ = 0;
     }

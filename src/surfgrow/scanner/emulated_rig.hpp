@@ -24,8 +24,10 @@ class EmulatedRig {
   public:
     /// `spec`: the laser (within the URG-04LX's steps 44..725, front 384), the tilt plan's step
     /// (the sweep's neighbours for mixed pixels), n, the optical offset. `pose`: where the rig
-    /// stands in `scene`, which must outlive it. Sweep k at a servo position draws its noise from
-    /// mix_seed(seed, k). Throws Error(kInvalidParameter) for a spec the URG cannot have.
+    /// stands in `scene`, which must outlive it. The k-th position swept draws its rays' noise
+    /// from their own streams of `seed` (ScanSimulator::simulate's first_stream), and every
+    /// sweep shares the scan's systematic offset per face, as in one simulated scan. Throws
+    /// Error(kInvalidParameter) for a spec the URG cannot have.
     EmulatedRig(const Scene& scene, const ScannerSpec& spec, const NoiseModel& noise,
                 const Pose& pose, std::uint64_t seed, const UrgFaults& urg_faults = {},
                 const dxl::ServoFaults& servo_faults = {}, std::uint8_t servo_id = 1);
@@ -52,8 +54,8 @@ class EmulatedRig {
     mutable std::mutex mutex_;
     UrgEmulator urg_;
     dxl::ServoEmulator servo_;
-    std::int32_t cached_ticks_ = -1;  // the position the cached readings belong to
-    std::uint64_t sweeps_ = 0;        // positions simulated so far
+    std::int32_t cached_ticks_ = -1;       // the position the cached readings belong to
+    std::uint64_t sweeps_ = 0;             // positions simulated so far
     std::vector<std::uint16_t> readings_;  // n per step at cached_ticks_
     int served_ = 0;                       // readings served at cached_ticks_
     std::map<std::int32_t, std::vector<std::int32_t>> truth_;  // by servo ticks

@@ -53,8 +53,8 @@ PointCloud fuse_scans(std::span<const RawScan> scans, const FuseOptions& options
         const RangeFilter filter = for_scan(k, [&] { return make_filter(scan, options); });
         if (scan.partial() && !options.allow_partial)
             throw Error(ErrorCode::kInvalidParameter,
-                        cat({"scan ", std::to_string(k), " is partial: ",
-                             std::to_string(scan.spec.tilt.positions), " of ",
+                        cat({"scan ", std::to_string(k),
+                             " is partial: ", std::to_string(scan.spec.tilt.positions), " of ",
                              std::to_string(scan.planned_positions),
                              " tilt positions (the acquisition stopped early",
                              scan.stop_reason.empty() ? "" : ": ", scan.stop_reason,

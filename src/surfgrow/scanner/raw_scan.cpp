@@ -29,10 +29,10 @@ void RawScan::validate() const {
     per_position(sensor_time_ms.size(), "sensor time stamps");
     for (std::size_t i = 0; i < tilt_read_deg.size(); ++i)
         if (!std::isfinite(tilt_read_deg[i]) || std::abs(tilt_read_deg[i]) > 180.0)
-            throw Error(ErrorCode::kInvalidParameter,
-                        cat({"read-back tilt angle ", std::to_string(tilt_read_deg[i]),
-                             " deg at position ", std::to_string(i),
-                             " is not within [-180, 180]"}));
+            throw Error(
+                ErrorCode::kInvalidParameter,
+                cat({"read-back tilt angle ", std::to_string(tilt_read_deg[i]), " deg at position ",
+                     std::to_string(i), " is not within [-180, 180]"}));
     if (planned_positions < 0 || planned_positions > 20000)
         throw Error(ErrorCode::kInvalidParameter,
                     cat({"planned tilt positions ", std::to_string(planned_positions),

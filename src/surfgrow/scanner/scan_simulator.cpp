@@ -77,6 +77,11 @@ ScanSimulator::ScanSimulator(const Scene& scene, ScannerSpec spec, NoiseModel no
 }
 
 SimulatedScan ScanSimulator::simulate(const Pose& pose, std::uint64_t seed) const {
+    return simulate(pose, seed, 0);
+}
+
+SimulatedScan ScanSimulator::simulate(const Pose& pose, std::uint64_t seed,
+                                      std::uint64_t first_stream) const {
     check_rigid(pose);
     const ScannerSpec& spec = scanner_.spec();
     const std::size_t rays = spec.rays();
@@ -185,7 +190,7 @@ SimulatedScan ScanSimulator::simulate(const Pose& pose, std::uint64_t seed) cons
 
             const double range_mm = br.range_m * 1000.0;
             if (range_mm < min_mm || range_mm > max_mm) continue;  // beyond the sensor's reach
-            GaussianSource g(mix_seed(seed, ray));
+            GaussianSource g(mix_seed(seed, first_stream + ray));
             const double sigma = noise_.sigma_mm(range_mm);
             // A mixed pixel takes the offset of the face its centre met.
             const std::int32_t bias_face = br.face >= 0 ? br.face : centre_face[ray];

@@ -45,6 +45,11 @@ class ScanSimulator {
     /// One scan from `pose` (sensor to world). Throws Error(kInvalidParameter) for a non-rigid
     /// pose.
     [[nodiscard]] SimulatedScan simulate(const Pose& pose, std::uint64_t seed) const;
+    /// The same with ray r drawing from stream mix_seed(seed, first_stream + r): pieces of one
+    /// scan simulated apart (the emulated rig's sweeps) share its faces' systematic offsets and
+    /// never repeat a ray's noise.
+    [[nodiscard]] SimulatedScan simulate(const Pose& pose, std::uint64_t seed,
+                                         std::uint64_t first_stream) const;
 
     /// One scan per pose; scan k uses seed mix_seed(seed, k).
     [[nodiscard]] std::vector<SimulatedScan> simulate(const std::vector<Pose>& poses,

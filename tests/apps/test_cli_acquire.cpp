@@ -1,0 +1,160 @@
+// End-to-end tests of `surfgrow acquire`: a whole scan of the I-beam channel through the emulated
+// URG-04LX and servo behind pseudo-terminals, then scan2cloud, grow and eval as a user runs them;
+// every fault the emulator injects gives a retry or a partial scan that is kept and marked,
+// never silently fused; bad arguments are refused before a device is touched.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli_support.hpp"
+#include "support/test_support.hpp"
+#include "surfgrow/core/text.hpp"
+#include "surfgrow/io/raw_scan_format.hpp"
+
+namespace surfgrow {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CliRun;
+
+constexpr int kExitDeviceFailed = 11;  // README, "When something is wrong"
+
+CliRun surfgrow(const std::string& args) {
+    return test::run_surfgrow(args);
+}
+std::string q(const fs::path& p) {
+    return test::quoted(p);
+}
+
+// A short plan for the fault cases: 21 positions, 3 readings, quick time-outs.
+const std::string kShort = " --tilt -10deg:10deg:1deg --readings 3 --timeout 100ms ";
+
+TEST(CliAcquire, AWholeEmulatedScanOfTheChannelGrowsAsWellAsASimulatedOne) {
+    const test::TempDir tmp;
+    const fs::path scans = tmp / "scans";
+    CliRun r = surfgrow(cat({"acquire --emulate ibeam-channel -o ", q(scans)}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("361 tilt positions x 682 steps x 5 readings"), std::string::npos)
+        << r.out;
+    const scanner::RawScan scan = io::read_raw_scan(scans / "scan-000.sgraw");
+    EXPECT_FALSE(scan.partial());
+    ASSERT_EQ(scan.tilt_read_deg.size(), 361u);
+    // The servo reports whole ticks (360/4096 deg): the angles recorded are those, not the plan.
+    for (int i = 0; i < 361; ++i) {
+        EXPECT_NEAR(scan.tilt_read_deg[i], scan.spec.tilt.tilt_deg(i), 0.5 * 360 / 4096 + 1e-9);
+        const double ticks = scan.tilt_read_deg[i] * 4096 / 360;
+        EXPECT_NEAR(ticks, std::round(ticks), 1e-9);
+    }
+    EXPECT_TRUE(scan.has_truth());
+    EXPECT_NE(scan.note.find("URG-04LX"), std::string::npos) << scan.note;
+    EXPECT_TRUE(fs::exists(scans / "scene.json"));
+
+    // The same seed, the same bytes (the emulation is deterministic); a second acquisition into
+    // the folder becomes the next scan.
+    r = surfgrow(cat({"acquire --emulate ibeam-channel -q -o ", q(scans)}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(test::read_bytes(scans / "scan-000.sgraw"),
+              test::read_bytes(scans / "scan-001.sgraw"));
+    fs::remove(scans / "scan-001.sgraw");
+
+    // Then as with any scan: fused, grown and scored against the scene's truth.
+    r = surfgrow(cat({"scan2cloud ", q(scans), " -q -o ", q(scans / "cloud.ply")}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    r = surfgrow(cat({"grow ", q(scans / "cloud.ply"), " -q --no-picture -o ", q(tmp / "out")}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    r = surfgrow(cat({"eval ", q(tmp / "out"), " --truth ", q(scans), " -q"}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    const auto m = nlohmann::json::parse(test::read_bytes(tmp / "out" / "eval.json"))["metrics"];
+    EXPECT_GE(m["registered_planar"].get<double>(), 0.99) << r.out;
+    EXPECT_LE(m["normal_median"].get<double>(), 1.0) << r.out;
+    EXPECT_LE(m["planes_normal_p95"].get<double>(), 2.0) << r.out;
+    EXPECT_LE(m["normal_over_45"].get<double>(), 0.01) << r.out;
+}
+
+TEST(CliAcquire, DamagedAndLostRepliesAreAskedForAgain) {
+    const test::TempDir tmp;
+    const CliRun r = surfgrow(cat({"acquire --emulate room-corner", kShort,
+                                   "--emulate-fault urg-corrupt=4 --emulate-fault urg-drop=9 "
+                                   "--emulate-fault servo-drop=3 -o ",
+                                   q(tmp / "a.sgraw")}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("(2 retries)"), std::string::npos) << r.out;
+    EXPECT_FALSE(io::read_raw_scan(tmp / "a.sgraw").partial());
+}
+
+TEST(CliAcquire, ALaggingServoIsRecordedWhereItStopped) {
+    const test::TempDir tmp;
+    const CliRun r = surfgrow(cat({"acquire --emulate room-corner", kShort,
+                                   "--emulate-fault servo-lag=0.5deg -q -o ", q(tmp / "a.sgraw")}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    const scanner::RawScan scan = io::read_raw_scan(tmp / "a.sgraw");
+    // 0.5 deg is 6 of the servo's ticks (360/4096 deg); each goal is rounded to a tick.
+    const double tick = 360.0 / 4096;
+    for (int i = 0; i < scan.spec.tilt.positions; ++i)
+        EXPECT_NEAR(scan.tilt_read_deg[i] - scan.spec.tilt.tilt_deg(i), 6 * tick, tick / 2 + 1e-9);
+}
+
+TEST(CliAcquire, ADeviceFailingMidScanLeavesAPartialScanThatScan2CloudRefuses) {
+    const test::TempDir tmp;
+    // The sensor unplugged after 10 positions' sweeps; the servo blocked at 3 deg.
+    for (const std::string fault : {"urg-unplug=30", "servo-stall=3deg"}) {
+        const fs::path file = tmp / (fault.substr(0, 3) + ".sgraw");
+        CliRun r = surfgrow(cat(
+            {"acquire --emulate room-corner", kShort, "--emulate-fault ", fault, " -o ", q(file)}));
+        EXPECT_EQ(r.code, kExitDeviceFailed) << r.out;
+        EXPECT_NE(r.out.find("partial"), std::string::npos) << r.out;
+        const scanner::RawScan scan = io::read_raw_scan(file);
+        EXPECT_TRUE(scan.partial());
+        EXPECT_EQ(scan.planned_positions, 21);
+        EXPECT_EQ(scan.spec.tilt.positions, fault[0] == 'u' ? 10 : 14);
+        EXPECT_NE(scan.stop_reason.find(fault[0] == 'u' ? "URG" : "servo"), std::string::npos)
+            << scan.stop_reason;
+        r = surfgrow(cat({"scan2cloud ", q(file), " -o ", q(tmp / "c.ply")}));
+        EXPECT_EQ(r.code, 3) << r.out;
+        EXPECT_NE(r.out.find("--allow-partial"), std::string::npos) << r.out;
+        EXPECT_FALSE(fs::exists(tmp / "c.ply"));
+        r = surfgrow(cat({"scan2cloud ", q(file), " --allow-partial -q -o ", q(tmp / "c.ply")}));
+        EXPECT_EQ(r.code, 0) << r.out;
+        fs::remove(tmp / "c.ply");
+    }
+    // Unplugged from the start: nothing is taken, nothing written.
+    const CliRun r = surfgrow(cat({"acquire --emulate room-corner", kShort,
+                                   "--emulate-fault urg-unplug=0 -o ", q(tmp / "none.sgraw")}));
+    EXPECT_EQ(r.code, kExitDeviceFailed) << r.out;
+    EXPECT_NE(r.out.find("nothing was written"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(tmp / "none.sgraw"));
+}
+
+TEST(CliAcquire, BadArgumentsAreRefusedBeforeADeviceIsTouched) {
+    const test::TempDir tmp;
+    const std::string out = " -o " + q(tmp / "x.sgraw");
+    const struct {
+        const char* args;
+        int code;
+        const char* says;
+    } cases[] = {
+        {"--emulate room-corner --tilt -10:10:1", 2, "no unit"},
+        {"--emulate room-corner --tilt 10deg:-10deg:1deg", 3, "FIRST <= LAST"},
+        {"--emulate room-corner --tilt -10deg:10deg", 2, "FIRST:LAST:STEP"},
+        {"--emulate room-corner --tilt -90deg:90deg:0.001deg", 3, "at most 20000"},
+        {"--emulate room-corner --readings 0", 3, "readings"},
+        {"--emulate room-corner --servo-id 300", 3, "--servo-id"},
+        {"--emulate room-corner --timeout 5", 2, "--timeout"},
+        {"--emulate room-corner --emulate-fault urg-melt=1", 2, "unknown fault"},
+        {"--emulate-fault urg-drop=1", 2, "needs --emulate"},
+        {"--emulate no-such-scene", 3, "no-such-scene"},
+        {"--port /no/such/port", 4, "/no/such/port"},
+        {"--port /dev/null", 4, "not a serial port"},
+    };
+    for (const auto& c : cases) {
+        const CliRun r = surfgrow(cat({"acquire ", c.args, out}));
+        EXPECT_EQ(r.code, c.code) << c.args << ": " << r.out;
+        EXPECT_NE(r.out.find(c.says), std::string::npos) << c.args << ": " << r.out;
+        EXPECT_FALSE(fs::exists(tmp / "x.sgraw")) << c.args;
+    }
+}
+
+}  // namespace
+}  // namespace surfgrow
