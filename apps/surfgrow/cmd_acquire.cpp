@@ -192,6 +192,8 @@ void add_acquire_command(CLI::App& app) {
         std::string emulate;
         std::vector<std::string> faults;
         std::string noise = "datasheet";
+        std::string true_offset;
+        std::string true_zero = "0deg";
         std::uint64_t seed = 1;
         bool quiet = false;
     };
@@ -233,6 +235,12 @@ void add_acquire_command(CLI::App& app) {
                     "(replies counted from 0), servo-lag=ANGLE, servo-stall=ANGLE; repeatable");
     cmd->add_option("--noise", args->noise, "With --emulate: datasheet or ideal")
         ->capture_default_str();
+    cmd->add_option("--emulate-offset", args->true_offset,
+                    "With --emulate: the laser's true optical offset, when --optical-offset is "
+                    "wrong (default: --optical-offset)");
+    cmd->add_option("--emulate-zero", args->true_zero,
+                    "With --emulate: the laser's true tilt when the servo reads 0 (a turned horn)")
+        ->capture_default_str();
     add_seed_option(*cmd, args->seed, "With --emulate: seed of the simulated noise");
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
 
@@ -255,6 +263,13 @@ void add_acquire_command(CLI::App& app) {
         if (!a.faults.empty() && a.emulate.empty())
             throw Error(ErrorCode::kUsage, "--emulate-fault needs --emulate");
         for (const std::string& f : a.faults) add_fault(f, urg_faults, servo_faults);
+        if (a.emulate.empty() && (!a.true_offset.empty() || a.true_zero != "0deg"))
+            throw Error(ErrorCode::kUsage, "--emulate-offset and --emulate-zero need --emulate");
+        const double true_offset_m =
+            a.true_offset.empty() ? spec.optical_offset_m.z() : optical_offset_m(a.true_offset);
+        const double true_zero_deg = parse_angle_deg(a.true_zero, "--emulate-zero");
+        if (!(std::abs(true_zero_deg) <= 10))
+            invalid(cat({"--emulate-zero ", a.true_zero, ": within 10 deg"}));
         const auto servo_id = static_cast<std::uint8_t>(a.servo_id);
 
         std::optional<scanner::Scene> scene;
@@ -271,10 +286,17 @@ void add_acquire_command(CLI::App& app) {
         std::unique_ptr<io::EmulatedPort> urg_pty, servo_pty;
         std::string urg_path = a.port, servo_path = a.servo_port;
         if (scene) {
-            rig = std::make_unique<scanner::EmulatedRig>(
-                *scene, spec, noise_model(a.noise), pose,
-                mix_seed(a.seed, static_cast<std::uint64_t>(pose_index)), urg_faults, servo_faults,
-                servo_id);
+            scanner::RigSetup setup;
+            setup.noise = noise_model(a.noise);
+            setup.pose = pose;
+            setup.seed = mix_seed(a.seed, static_cast<std::uint64_t>(pose_index));
+            setup.urg_faults = urg_faults;
+            setup.servo_faults = servo_faults;
+            setup.servo_id = servo_id;
+            setup.tilt_zero_deg = true_zero_deg;
+            scanner::ScannerSpec truth = spec;
+            truth.optical_offset_m.z() = true_offset_m;
+            rig = std::make_unique<scanner::EmulatedRig>(*scene, truth, setup);
             urg_pty = std::make_unique<io::EmulatedPort>(
                 [r = rig.get()](std::string_view l) { return r->urg_reply(l); });
             servo_pty = std::make_unique<io::EmulatedPort>(

@@ -9,40 +9,12 @@
 #include "scan_job.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/io/calibration_file.hpp"
 #include "surfgrow/io/cloud_io.hpp"
 #include "surfgrow/io/poses_file.hpp"
 #include "surfgrow/io/raw_scan_format.hpp"
 
 namespace surfgrow::cli {
-
-namespace {
-
-// The raw scan files the arguments name: a file as it is, a folder (the one `surfgrow scan -o`
-// writes) as its .sgraw files in name order, which is scan order. A folder without any is an
-// error: fusing nothing silently would hide a wrong path.
-std::vector<std::string> raw_scan_files(const std::vector<std::string>& args) {
-    namespace fs = std::filesystem;
-    std::vector<std::string> files;
-    for (const std::string& arg : args) {
-        std::error_code ec;
-        if (!fs::is_directory(arg, ec)) {
-            files.push_back(arg);
-            continue;
-        }
-        std::vector<std::string> found;
-        for (const fs::directory_entry& e : fs::directory_iterator(arg, ec))
-            if (e.path().extension() == ".sgraw") found.push_back(e.path().string());
-        if (ec) throw Error(ErrorCode::kCannotOpen, cat({"cannot list ", arg, ": ", ec.message()}));
-        if (found.empty())
-            throw Error(ErrorCode::kCannotOpen,
-                        cat({arg, ": no raw scans (.sgraw) in this folder"}));
-        std::sort(found.begin(), found.end());
-        files.insert(files.end(), found.begin(), found.end());
-    }
-    return files;
-}
-
-}  // namespace
 
 void add_scan2cloud_command(CLI::App& app) {
     auto* cmd = app.add_subcommand(
@@ -55,6 +27,7 @@ void add_scan2cloud_command(CLI::App& app) {
         std::string min_range;
         std::string max_range;
         bool allow_partial = false;
+        std::string calibration;
         bool quiet = false;
     };
     auto args = std::make_shared<Args>();
@@ -72,10 +45,23 @@ void add_scan2cloud_command(CLI::App& app) {
                     "Drop readings nearer than this (default: the scan's laser limit)");
     cmd->add_option("--max-range", args->max_range,
                     "Drop readings farther than this (default: the scan's laser limit)");
+    cmd->add_option("--calibration", args->calibration,
+                    "Mounting to convert with (surfgrow calibrate's file); default: "
+                    "calibration.json in a folder of scans given, if there is one; none: the "
+                    "scans' own");
     cmd->add_flag("--allow-partial", args->allow_partial,
                   "Fuse scans an acquisition left partial (a device failed mid-scan)");
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
     cmd->callback([args] {
+        namespace fs = std::filesystem;
+        std::string calibration = args->calibration;
+        if (calibration.empty())
+            for (const std::string& arg : args->raws) {
+                std::error_code ec;
+                if (fs::is_regular_file(fs::path(arg) / "calibration.json", ec))
+                    calibration = (fs::path(arg) / "calibration.json").string();
+            }
+        if (calibration == "none") calibration.clear();
         args->raws = raw_scan_files(args->raws);
         std::vector<scanner::RawScan> raws;
         for (const std::string& file : args->raws) raws.push_back(io::read_raw_scan(file));
@@ -86,6 +72,10 @@ void add_scan2cloud_command(CLI::App& app) {
                             cat({args->poses, ": ", std::to_string(poses.size()), " poses for ",
                                  std::to_string(raws.size()), " raw scans"}));
             for (std::size_t k = 0; k < raws.size(); ++k) raws[k].pose = poses[k];
+        }
+        if (!calibration.empty()) {
+            const scanner::Calibration c = io::read_calibration_file(calibration);
+            for (scanner::RawScan& raw : raws) scanner::apply_calibration(raw, c);
         }
         // Each scan against its own laser's limits, with the file named in the message.
         scanner::FuseOptions fuse;
@@ -112,7 +102,9 @@ void add_scan2cloud_command(CLI::App& app) {
         options.write_scans = true;
         io::write_cloud(args->out, cloud, options);
         if (!args->quiet)
-            std::cout << raws.size() << " scans -> " << cloud.size() << " points" << std::endl;
+            std::cout << raws.size() << " scans -> " << cloud.size() << " points"
+                      << (calibration.empty() ? "" : " (calibrated by " + calibration + ")")
+                      << std::endl;
     });
 }
 

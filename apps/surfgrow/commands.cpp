@@ -16,6 +16,7 @@ void add_view_command(CLI::App& app);
 void add_scan_command(CLI::App& app);
 void add_scan2cloud_command(CLI::App& app);
 void add_acquire_command(CLI::App& app);
+void add_calibrate_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
@@ -34,6 +35,7 @@ void add_all_commands(CLI::App& app) {
     add_scan_command(app);
     add_scan2cloud_command(app);
     add_acquire_command(app);
+    add_calibrate_command(app);
     add_eval_command(app);
     add_demo_command(app);
     add_sweep_command(app);

@@ -1,5 +1,6 @@
 #include "scan_job.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -83,6 +84,29 @@ double optical_offset_m(const std::string& text) {
     if (!(std::abs(m) < 1.0))
         invalid(cat({"--optical-offset ", text, " must be under 1 m in size"}));
     return m;
+}
+
+// A folder without raw scans is an error: fusing nothing silently would hide a wrong path.
+std::vector<std::string> raw_scan_files(const std::vector<std::string>& args) {
+    namespace fs = std::filesystem;
+    std::vector<std::string> files;
+    for (const std::string& arg : args) {
+        std::error_code ec;
+        if (!fs::is_directory(arg, ec)) {
+            files.push_back(arg);
+            continue;
+        }
+        std::vector<std::string> found;
+        for (const fs::directory_entry& e : fs::directory_iterator(arg, ec))
+            if (e.path().extension() == ".sgraw") found.push_back(e.path().string());
+        if (ec) throw Error(ErrorCode::kCannotOpen, cat({"cannot list ", arg, ": ", ec.message()}));
+        if (found.empty())
+            throw Error(ErrorCode::kCannotOpen,
+                        cat({arg, ": no raw scans (.sgraw) in this folder"}));
+        std::sort(found.begin(), found.end());
+        files.insert(files.end(), found.begin(), found.end());
+    }
+    return files;
 }
 
 void ScanSettings::add_to(CLI::App& cmd) {

@@ -74,6 +74,11 @@ ScanData run_scan(const ScanSettings& settings);
 void write_scan_outputs(const std::filesystem::path& dir, const ScanData& data,
                         const ScanSettings& settings);
 
+/// The raw scan files the arguments name: a file as it is, a folder (`scan -o`, `acquire -o`)
+/// as its .sgraw files in name order, which is scan order. A folder without any is
+/// Error(kCannotOpen).
+std::vector<std::string> raw_scan_files(const std::vector<std::string>& args);
+
 /// "scan-007.sgraw".
 std::string raw_scan_name(std::size_t k);
 

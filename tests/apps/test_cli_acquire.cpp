@@ -156,5 +156,44 @@ TEST(CliAcquire, BadArgumentsAreRefusedBeforeADeviceIsTouched) {
     }
 }
 
+TEST(CliCalibrate, AWrongOpticalOffsetIsFoundAndScan2CloudAppliesIt) {
+    const test::TempDir tmp;
+    const fs::path scans = tmp / "scans";
+    // The bracket holds the laser 55 mm above the axis; the scan is recorded with 40 mm.
+    CliRun r =
+        surfgrow(cat({"acquire --emulate room-corner --emulate-offset 55mm -q -o ", q(scans)}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    r = surfgrow(cat({"calibrate ", q(scans)}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("servo zero not estimated"), std::string::npos) << r.out;
+    const auto c = nlohmann::json::parse(test::read_bytes(scans / "calibration.json"));
+    const double offset = c["optical_offset_m"].get<double>();
+    const double sigma = c["optical_offset_sigma_m"].get<double>();
+    EXPECT_NEAR(offset, 0.055, 0.002) << r.out;
+    EXPECT_LT(std::abs(offset - 0.055), 4 * sigma + 0.0005) << r.out;
+    EXPECT_LT(c["surface"]["rms_after_m"].get<double>(),
+              c["surface"]["rms_before_m"].get<double>());
+    // scan2cloud of the folder converts with it, and says so; `none` leaves the scans as they are.
+    r = surfgrow(cat({"scan2cloud ", q(scans), " -o ", q(tmp / "a.ply")}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("calibrated by"), std::string::npos) << r.out;
+    r = surfgrow(cat({"scan2cloud ", q(scans), " --calibration none -o ", q(tmp / "b.ply")}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(r.out.find("calibrated by"), std::string::npos) << r.out;
+    EXPECT_NE(test::read_bytes(tmp / "a.ply"), test::read_bytes(tmp / "b.ply"));
+
+    // What it cannot use is refused by name.
+    test::write_bytes(tmp / "bad.json", R"({"format": "surfgrow-calibration", "version": 1,
+        "optical_offset_m": 5, "tilt_zero_deg": 0})");
+    r = surfgrow(cat({"scan2cloud ", q(scans), " --calibration ", q(tmp / "bad.json"), " -o ",
+                      q(tmp / "c.ply")}));
+    EXPECT_EQ(r.code, 6) << r.out;
+    EXPECT_NE(r.out.find("optical_offset_m"), std::string::npos) << r.out;
+    r = surfgrow(cat({"calibrate ", q(scans / "scan-000.sgraw")}));
+    EXPECT_EQ(r.code, 2) << r.out;
+    r = surfgrow(cat({"calibrate ", q(tmp / "nothing-here"), " -o ", q(tmp / "x.json")}));
+    EXPECT_EQ(r.code, 4) << r.out;
+}
+
 }  // namespace
 }  // namespace surfgrow

@@ -44,7 +44,7 @@ struct Rig {
     dxl::ServoDriver servo;
     Rig(const Scene& scene, const ScannerSpec& spec, NoiseModel noise, UrgFaults uf = {},
         dxl::ServoFaults sf = {})
-        : rig(scene, spec, noise, Pose::Identity(), 7, uf, sf),
+        : rig(scene, spec, {noise, Pose::Identity(), 7, uf, sf}),
           urg([this](std::string_view c) { return rig.urg_reply(c); }),
           servo([this](std::string_view p) { return rig.servo_reply(p); }) {}
 };
@@ -144,7 +144,7 @@ TEST(Acquisition, AStalledServoLeavesAPartialScanAndNothingTakenIsAnError) {
     // A laser the sensor cannot have is refused before the scan starts.
     ScannerSpec wide = plan(5);
     wide.laser = urg04lx_scip_769();
-    EXPECT_THROW(EmulatedRig(scene, wide, NoiseModel{}, Pose::Identity(), 1), Error);
+    EXPECT_THROW(EmulatedRig(scene, wide), Error);
 }
 
 }  // namespace

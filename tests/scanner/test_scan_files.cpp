@@ -10,6 +10,7 @@
 #include "support/test_support.hpp"
 
 #include "surfgrow/core/error.hpp"
+#include "surfgrow/io/calibration_file.hpp"
 #include "surfgrow/io/poses_file.hpp"
 #include "surfgrow/io/raw_scan_format.hpp"
 #include "surfgrow/io/scene_file.hpp"
@@ -168,6 +169,49 @@ TEST(RawScanFormat, HostileVersionTwoFieldsAreRefused) {
         reseal(bad);
         EXPECT_EQ(code_of([&] { (void)decode_raw_scan(bad, "t"); }), ErrorCode::kInvalidParameter);
     }
+}
+
+TEST(CalibrationFile, RoundTripsAndRefusesWhatItCannotUse) {
+    CalibrationResult r;
+    r.calibration = {0.0552, -0.31};
+    r.offset_sigma_m = 0.0004;
+    r.zero_estimated = true;
+    r.zero_sigma_deg = 0.1;
+    const std::string text = calibration_to_json(r, {"a.sgraw", "b.sgraw"});
+    const Calibration c = parse_calibration_json(text, "cal.json");
+    EXPECT_EQ(c.optical_offset_m, 0.0552);
+    EXPECT_EQ(c.tilt_zero_deg, -0.31);
+    const TempDir dir;
+    write_calibration_file(dir / "c.json", r, {});
+    EXPECT_EQ(read_calibration_file(dir / "c.json").optical_offset_m, 0.0552);
+    EXPECT_EQ(code_of([&] { (void)read_calibration_file(dir / "none.json"); }),
+              ErrorCode::kCannotOpen);
+    for (const char* bad : {"", "{", "[]", R"({"format": "surfgrow-scene", "version": 1})",
+                            R"({"format": "surfgrow-calibration", "version": 2,
+                                "optical_offset_m": 0.04, "tilt_zero_deg": 0})",
+                            R"({"format": "surfgrow-calibration", "version": 1,
+                                "tilt_zero_deg": 0})",
+                            R"({"format": "surfgrow-calibration", "version": 1,
+                                "optical_offset_m": "40mm", "tilt_zero_deg": 0})",
+                            R"({"format": "surfgrow-calibration", "version": 1,
+                                "optical_offset_m": 0.04, "tilt_zero_deg": 11})",
+                            R"({"format": "surfgrow-calibration", "version": 1,
+                                "optical_offset_m": 1e400, "tilt_zero_deg": 0})"})
+        EXPECT_EQ(code_of([&] { (void)parse_calibration_json(bad, "c.json"); }),
+                  ErrorCode::kMalformedInput)
+            << bad;
+    // Applied: the offset replaced, the zero added to every angle the scan places rays with.
+    RawScan scan = small_scan(false);
+    RawScan read_back = scan;
+    for (int i = 0; i < scan.spec.tilt.positions; ++i)
+        read_back.tilt_read_deg.push_back(scan.spec.tilt.tilt_deg(i));
+    apply_calibration(scan, c);
+    apply_calibration(read_back, c);
+    for (int i = 0; i < scan.spec.tilt.positions; ++i) {
+        EXPECT_NEAR(scan.tilt_deg(i), read_back.tilt_deg(i), 1e-12);
+        EXPECT_NEAR(scan.tilt_deg(i), small_scan(false).spec.tilt.tilt_deg(i) - 0.31, 1e-12);
+    }
+    EXPECT_EQ(scan.spec.optical_offset_m.z(), 0.0552);
 }
 
 TEST(RawScanFormat, FullPaperScanRoundTrips) {

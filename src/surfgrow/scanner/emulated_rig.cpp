@@ -1,5 +1,6 @@
 #include "surfgrow/scanner/emulated_rig.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "surfgrow/core/error.hpp"
@@ -8,18 +9,18 @@
 
 namespace surfgrow::scanner {
 
-EmulatedRig::EmulatedRig(const Scene& scene, const ScannerSpec& spec, const NoiseModel& noise,
-                         const Pose& pose, std::uint64_t seed, const UrgFaults& urg_faults,
-                         const dxl::ServoFaults& servo_faults, std::uint8_t servo_id)
+EmulatedRig::EmulatedRig(const Scene& scene, const ScannerSpec& spec, const RigSetup& setup)
     : scene_(scene),
       spec_(spec),
-      noise_(noise),
-      pose_(pose),
-      seed_(seed),
-      urg_([this] { return sweep(); }, urg_faults),
-      servo_(servo_id, 40, servo_faults) {
+      setup_(setup),
+      urg_([this] { return sweep(); }, setup.urg_faults),
+      servo_(setup.servo_id, 40, setup.servo_faults) {
     spec_.validate();
-    check_rigid(pose_);
+    check_rigid(setup_.pose);
+    if (!(std::abs(setup_.tilt_zero_deg) <= 10))
+        throw Error(ErrorCode::kInvalidParameter,
+                    cat({"the emulated servo's zero error ", std::to_string(setup_.tilt_zero_deg),
+                         " deg is beyond 10 deg"}));
     const LaserSpec& l = spec_.laser;
     if (l.first_step < UrgEmulator::kFirstStep || l.last_step > UrgEmulator::kLastStep ||
         l.front_step != UrgEmulator::kFrontStep)
@@ -55,11 +56,11 @@ std::vector<std::uint32_t> EmulatedRig::sweep() {  // called by urg_ under mutex
         // Three tilt rows around the servo's true angle, so the middle one's beams see their
         // neighbours for mixed pixels as in a whole simulated scan.
         ScannerSpec s = spec_;
-        s.tilt.first_deg = dxl::degrees_of(ticks) - s.tilt.step_deg;
+        s.tilt.first_deg = dxl::degrees_of(ticks) + setup_.tilt_zero_deg - s.tilt.step_deg;
         s.tilt.positions = 3;
-        const ScanSimulator sim(scene_, s, noise_);
+        const ScanSimulator sim(scene_, s, setup_.noise);
         const std::uint64_t first_stream = sweeps_++ * 3 * steps;
-        const SimulatedScan rows = sim.simulate(pose_, seed_, first_stream);
+        const SimulatedScan rows = sim.simulate(setup_.pose, setup_.seed, first_stream);
         readings_.assign(rows.raw.readings_mm.begin() + static_cast<std::ptrdiff_t>(steps * n),
                          rows.raw.readings_mm.begin() + static_cast<std::ptrdiff_t>(2 * steps * n));
         truth_[ticks].assign(

@@ -20,17 +20,28 @@
 
 namespace surfgrow::scanner {
 
+/// How the emulated rig stands and misbehaves.
+struct RigSetup {
+    NoiseModel noise = {};
+    Pose pose = Pose::Identity();  ///< where the rig stands in the scene (sensor to world)
+    std::uint64_t seed = 1;
+    UrgFaults urg_faults = {};
+    dxl::ServoFaults servo_faults = {};
+    std::uint8_t servo_id = 1;
+    /// The laser's true tilt when the servo reads 0: a servo horn mounted a little turned, which
+    /// the read-back angle cannot show (surfgrow calibrate estimates it). Within 10 deg.
+    double tilt_zero_deg = 0.0;
+};
+
 class EmulatedRig {
   public:
     /// `spec`: the laser (within the URG-04LX's steps 44..725, front 384), the tilt plan's step
-    /// (the sweep's neighbours for mixed pixels), n, the optical offset. `pose`: where the rig
-    /// stands in `scene`, which must outlive it. The k-th position swept draws its rays' noise
-    /// from their own streams of `seed` (ScanSimulator::simulate's first_stream), and every
-    /// sweep shares the scan's systematic offset per face, as in one simulated scan. Throws
-    /// Error(kInvalidParameter) for a spec the URG cannot have.
-    EmulatedRig(const Scene& scene, const ScannerSpec& spec, const NoiseModel& noise,
-                const Pose& pose, std::uint64_t seed, const UrgFaults& urg_faults = {},
-                const dxl::ServoFaults& servo_faults = {}, std::uint8_t servo_id = 1);
+    /// (the sweep's neighbours for mixed pixels), n, and the true optical offset (which the
+    /// acquisition's own spec may not know). `scene` must outlive the rig. The k-th position
+    /// swept draws its rays' noise from their own streams of the seed (ScanSimulator::simulate's
+    /// first_stream), and every sweep shares the scan's systematic offset per face, as in one
+    /// simulated scan. Throws Error(kInvalidParameter) for a spec the URG cannot have.
+    EmulatedRig(const Scene& scene, const ScannerSpec& spec, const RigSetup& setup = {});
 
     /// The sensor's bytes for a SCIP command line; the servo's for an instruction packet. Safe
     /// to call from the two ports' threads.
@@ -48,9 +59,7 @@ class EmulatedRig {
 
     const Scene& scene_;
     ScannerSpec spec_;
-    NoiseModel noise_;
-    Pose pose_;
-    std::uint64_t seed_;
+    RigSetup setup_;
     mutable std::mutex mutex_;
     UrgEmulator urg_;
     dxl::ServoEmulator servo_;
