@@ -125,7 +125,15 @@ void add_fault(const std::string& fault, scanner::UrgFaults& urg,
 // Where the scan goes: a .sgraw file as named, or the next free scan-NNN.sgraw in a folder (so
 // scans acquired one after another fuse in their order with `scan2cloud DIR`).
 fs::path output_file(const std::string& out) {
-    if (fs::path(out).extension() == ".sgraw") return out;
+    if (fs::path(out).extension() == ".sgraw") {
+        // Checked before the scan, which takes minutes with the real device.
+        const fs::path parent = fs::path(out).parent_path();
+        std::error_code ec;
+        if (!parent.empty() && !fs::is_directory(parent, ec))
+            throw Error(ErrorCode::kCannotWrite,
+                        cat({out, ": its folder does not exist (nothing was scanned)"}));
+        return out;
+    }
     std::error_code ec;
     fs::create_directories(out, ec);
     if (!fs::is_directory(out))

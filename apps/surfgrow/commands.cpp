@@ -17,6 +17,7 @@ void add_scan_command(CLI::App& app);
 void add_scan2cloud_command(CLI::App& app);
 void add_acquire_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
+void add_map_command(CLI::App& app);
 void add_eval_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
@@ -36,6 +37,7 @@ void add_all_commands(CLI::App& app) {
     add_scan2cloud_command(app);
     add_acquire_command(app);
     add_calibrate_command(app);
+    add_map_command(app);
     add_eval_command(app);
     add_demo_command(app);
     add_sweep_command(app);

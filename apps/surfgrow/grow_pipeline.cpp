@@ -132,8 +132,16 @@ GrowRun grow_and_write(const PointCloud& cloud, const PipelineConfig& config,
     GrowRun run;
     run.read_seconds = read_seconds;
     run.result = pipeline.run(cloud);
+    write_outputs(cloud, pipeline.config(), run, out_dir, outputs, units, input_name);
+    return run;
+}
+
+void write_outputs(const PointCloud& cloud, const PipelineConfig& config, GrowRun& run,
+                   const std::filesystem::path& out_dir, const OutputChoice& outputs,
+                   const CloudUnits& units, const std::string& input_name) {
     const PipelineResult& r = run.result;
-    const GrowerConfig& grow = pipeline.config().grow;
+    const GrowerConfig& grow = config.grow;
+    const double read_seconds = run.read_seconds;
 
     Stopwatch watch;
     io::ResultMeta meta;
@@ -143,7 +151,7 @@ GrowRun grow_and_write(const PointCloud& cloud, const PipelineConfig& config,
     meta.result_id = io::result_id(r.grow, grow, meta);
     io::OutputTransaction tx(out_dir, io::is_result_file);
     const io::OccupancySummary occupancy =
-        io::stage_result(tx, cloud, pipeline.config(), r, meta, outputs.files);
+        io::stage_result(tx, cloud, config, r, meta, outputs.files);
     std::span<const std::int32_t> planes;
     if (r.planes) planes = r.planes->plane_of_patch;
     stage_surfaces_pictures(tx, r.grow.surfaces, r.grow.stats, planes, units.name, grow.threads,
@@ -183,7 +191,6 @@ GrowRun grow_and_write(const PointCloud& cloud, const PipelineConfig& config,
     };
     tx.add("run.json", [&](std::ostream& o) { o << record.dump(2) << "\n"; });
     tx.commit();
-    return run;
 }
 
 }  // namespace surfgrow::cli

@@ -10,5 +10,6 @@ void bind_cloud(pybind11::module_& m);  // Cloud, read_cloud, write_cloud
 void bind_grow(pybind11::module_& m);   // grow, GrowResult
 void bind_robot(pybind11::module_& m);  // bound_planes, coverage, occupancy, CollisionSpheres
 void bind_scan(pybind11::module_& m);   // simulate, Scan, Truth, evaluate
+void bind_map(pybind11::module_& m);    // Map
 
 }  // namespace surfgrow::python

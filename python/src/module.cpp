@@ -16,4 +16,5 @@ PYBIND11_MODULE(_surfgrow, m) {
     surfgrow::python::bind_grow(m);
     surfgrow::python::bind_robot(m);
     surfgrow::python::bind_scan(m);
+    surfgrow::python::bind_map(m);
 }

@@ -194,6 +194,18 @@ class CollisionSpheres:
         """(clearance, ids) for (M, 3) points, (M, 4) spheres or (M, 7) capsules."""
     def collides(self, queries: ArrayLike, tolerance: float = 0.0) -> npt.NDArray[np.bool_]: ...
 
+class Map:
+    """A map grown scan by scan: each scan's points join the mapped surfaces where they fit and
+    grow new ones elsewhere. Deterministic for a given order of scans and seed."""
+    def __init__(self, mu: float = 0.012, min_pts: int = 10, seed: int = 1, threads: int = 0, *,
+                 join_tolerance: float = 1.5) -> None: ...
+    def add_scan(self, points: Union[ArrayLike, Cloud], origin: ArrayLike) -> GrowResult:
+        """Adds one scan taken from `origin`; returns the whole map so far."""
+    @property
+    def scans(self) -> int: ...
+    @property
+    def last_update(self) -> dict: ...
+
 class Truth:
     @property
     def labels(self) -> npt.NDArray[np.int32]: ...

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
 
 #include "cli_support.hpp"
 #include "support/test_support.hpp"
@@ -154,6 +155,9 @@ TEST(CliAcquire, BadArgumentsAreRefusedBeforeADeviceIsTouched) {
         EXPECT_NE(r.out.find(c.says), std::string::npos) << c.args << ": " << r.out;
         EXPECT_FALSE(fs::exists(tmp / "x.sgraw")) << c.args;
     }
+    const CliRun r = surfgrow("acquire --emulate room-corner -o /no/such/folder/a.sgraw");
+    EXPECT_EQ(r.code, 7) << r.out;
+    EXPECT_NE(r.out.find("nothing was scanned"), std::string::npos) << r.out;
 }
 
 TEST(CliCalibrate, AWrongOpticalOffsetIsFoundAndScan2CloudAppliesIt) {
@@ -193,6 +197,51 @@ TEST(CliCalibrate, AWrongOpticalOffsetIsFoundAndScan2CloudAppliesIt) {
     EXPECT_EQ(r.code, 2) << r.out;
     r = surfgrow(cat({"calibrate ", q(tmp / "nothing-here"), " -o ", q(tmp / "x.json")}));
     EXPECT_EQ(r.code, 4) << r.out;
+}
+
+TEST(CliMap, ScansArrivingInAFolderAreMappedAsTheyCome) {
+    const test::TempDir tmp;
+    const fs::path scans = tmp / "scans";
+    fs::create_directories(scans);
+    // The mapper waits for scans; the scanner takes two, from two places along the corner.
+    CliRun watched;
+    std::thread mapper([&] {
+        watched = surfgrow(
+            cat({"map --watch ", q(scans), " --idle 3s --no-picture -o ", q(tmp / "live")}));
+    });
+    for (const char* pose : {"0/2", "1/2"}) {
+        const CliRun r =
+            surfgrow(cat({"acquire --emulate room-corner --pose ", pose, " -q -o ", q(scans)}));
+        EXPECT_EQ(r.code, 0) << r.out;
+    }
+    mapper.join();
+    ASSERT_EQ(watched.code, 0) << watched.out;
+    EXPECT_NE(watched.out.find("scan 0 (scan-000.sgraw)"), std::string::npos) << watched.out;
+    EXPECT_NE(watched.out.find("scan 1 (scan-001.sgraw)"), std::string::npos) << watched.out;
+    EXPECT_NE(watched.out.find("joined the map"), std::string::npos) << watched.out;
+
+    // The same scans given at once: the same map, byte for byte.
+    CliRun r = surfgrow(cat({"map ", q(scans), " -q --no-picture -o ", q(tmp / "given")}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    for (const char* file : {"surfaces.json", "labels.txt", "planes.json", "coverage.json"})
+        EXPECT_EQ(test::read_bytes(tmp / "live" / file), test::read_bytes(tmp / "given" / file))
+            << file;
+    // And scored like any result, against the fused cloud of the same scans.
+    r = surfgrow(cat({"scan2cloud ", q(scans), " -q -o ", q(scans / "cloud.ply")}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    r = surfgrow(cat({"eval ", q(tmp / "given"), " --truth ", q(scans),
+                      " -q --require 'registered_planar>=0.98'"}));
+    EXPECT_EQ(r.code, 0) << r.out;
+
+    // Nothing to map, a partial scan, raw scans in another unit: refused.
+    EXPECT_EQ(surfgrow(cat({"map -o ", q(tmp / "x")})).code, 2);
+    EXPECT_EQ(surfgrow(cat({"map ", q(scans), " --units mm -o ", q(tmp / "x")})).code, 2);
+    r = surfgrow(cat({"acquire --emulate room-corner", kShort, "--emulate-fault urg-unplug=30 -o ",
+                      q(tmp / "p")}));
+    EXPECT_EQ(r.code, kExitDeviceFailed) << r.out;
+    r = surfgrow(cat({"map ", q(tmp / "p"), " -o ", q(tmp / "x")}));
+    EXPECT_EQ(r.code, 3) << r.out;
+    EXPECT_NE(r.out.find("--allow-partial"), std::string::npos) << r.out;
 }
 
 }  // namespace

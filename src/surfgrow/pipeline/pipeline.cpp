@@ -1,6 +1,10 @@
 #include "surfgrow/pipeline/pipeline.hpp"
 
+#include <string>
+
+#include "surfgrow/core/error.hpp"
 #include "surfgrow/core/stopwatch.hpp"
+#include "surfgrow/core/text.hpp"
 
 namespace surfgrow {
 
@@ -18,16 +22,32 @@ Pipeline::Pipeline(PipelineConfig config) : config_(std::move(config)) {
 }
 
 PipelineResult Pipeline::run(const CloudView& cloud) const {
+    const SurfaceGrower grower(config_.grow);
+    // The index is kept for the occupancy grid, which lies on exactly the grower's cubes.
+    std::optional<GrowIndex> index = grower.index(cloud);
+    GrowResult grown = grower.grow(cloud, *index);
+    if (!config_.occupancy) index.reset();
+    return outputs(cloud, std::move(grown), std::move(index));
+}
+
+PipelineResult Pipeline::finish(const CloudView& cloud, GrowResult grown) const {
+    if (grown.labels.size() != cloud.size())
+        throw Error(ErrorCode::kInvalidParameter,
+                    cat({"pipeline: ", std::to_string(grown.labels.size()), " labels for ",
+                         std::to_string(cloud.size()), " points"}));
+    std::optional<GrowIndex> index;
+    if (config_.occupancy) index = SurfaceGrower(config_.grow).index(cloud);
+    return outputs(cloud, std::move(grown), std::move(index));
+}
+
+PipelineResult Pipeline::outputs(const CloudView& cloud, GrowResult grown,
+                                 std::optional<GrowIndex> index) const {
     const PipelineConfig& c = config_;
     const auto report = [&](std::string_view stage) {
         if (c.grow.progress) c.grow.progress(stage, 1.0);
     };
     PipelineResult r;
-    const SurfaceGrower grower(c.grow);
-    // The index is kept for the occupancy grid, which lies on exactly the grower's cubes.
-    std::optional<GrowIndex> index = grower.index(cloud);
-    r.grow = grower.grow(cloud, *index);
-    if (!c.occupancy) index.reset();
+    r.grow = std::move(grown);
 
     if (c.planes) {
         const Stopwatch watch;

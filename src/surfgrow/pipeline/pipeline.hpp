@@ -60,7 +60,15 @@ class Pipeline {
     /// then "planes", "coverage", "occupancy", "collision" as each ends, and "done".
     [[nodiscard]] PipelineResult run(const CloudView& cloud) const;
 
+    /// Runs the stages after growing over a result grown elsewhere (a Map's): `grown` holds
+    /// surfaces and one label per point of `cloud`. Throws Error(kInvalidParameter) when the
+    /// labels do not match the cloud.
+    [[nodiscard]] PipelineResult finish(const CloudView& cloud, GrowResult grown) const;
+
   private:
+    PipelineResult outputs(const CloudView& cloud, GrowResult grown,
+                           std::optional<GrowIndex> index) const;
+
     PipelineConfig config_;
 };
 
