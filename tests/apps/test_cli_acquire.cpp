@@ -244,5 +244,20 @@ TEST(CliMap, ScansArrivingInAFolderAreMappedAsTheyCome) {
     EXPECT_NE(r.out.find("--allow-partial"), std::string::npos) << r.out;
 }
 
+TEST(CliDemo, EmulatedScansMappedOneByOneGiveTheDemosFolder) {
+    const test::TempDir tmp;
+    const CliRun r = surfgrow(cat({"demo --emulate --poses 2 -q -o ", q(tmp / "demo")}));
+    ASSERT_EQ(r.code, 0) << r.out;
+    for (const char* file :
+         {"surfaces.ply", "surfaces.json", "planes.json", "coverage.json", "occupancy.ply",
+          "environment.bt", "surfaces.png", "corner.png", "eval.json", "scan/scan-000.sgraw",
+          "scan/scan-001.sgraw", "scan/scene.json"})
+        EXPECT_TRUE(fs::exists(tmp / "demo" / file)) << file;
+    const auto m = nlohmann::json::parse(test::read_bytes(tmp / "demo" / "eval.json"))["metrics"];
+    EXPECT_GE(m["registered_planar"].get<double>(), 0.99);
+    EXPECT_LE(m["normal_median"].get<double>(), 1.0);
+    EXPECT_LE(m["planes_normal_p95"].get<double>(), 2.0);
+}
+
 }  // namespace
 }  // namespace surfgrow
