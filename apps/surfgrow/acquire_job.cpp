@@ -98,6 +98,10 @@ void add_fault(const std::string& fault, scanner::UrgFaults& urg,
         urg.corrupt.insert(fault_count(value, fault));
     } else if (key == "urg-drop") {
         urg.dropped.insert(fault_count(value, fault));
+    } else if (key == "urg-garble") {
+        urg.garbled.insert(fault_count(value, fault));
+    } else if (key == "servo-corrupt") {
+        servo.corrupt.insert(fault_count(value, fault));
     } else if (key == "urg-unplug") {
         urg.unplugged_after = fault_count(value, fault);
     } else if (key == "servo-drop") {
@@ -112,8 +116,8 @@ void add_fault(const std::string& fault, scanner::UrgFaults& urg,
     } else {
         throw Error(ErrorCode::kUsage,
                     cat({"--emulate-fault ", fault,
-                         ": unknown fault (urg-corrupt=N, urg-drop=N, urg-unplug=N, "
-                         "servo-drop=N, servo-lag=ANGLE, servo-stall=ANGLE)"}));
+                         ": unknown fault (urg-corrupt=N, urg-drop=N, urg-garble=N, urg-unplug=N, "
+                         "servo-corrupt=N, servo-drop=N, servo-lag=ANGLE, servo-stall=ANGLE)"}));
     }
 }
 
@@ -205,8 +209,9 @@ void AcquireSettings::add_to(CLI::App& cmd) {
                    "Emulate both devices scanning this built-in scene or scene file, behind "
                    "pseudo-terminals (the ports above are then not used)");
     cmd.add_option("--emulate-fault", faults,
-                   "With --emulate: urg-corrupt=N, urg-drop=N, urg-unplug=N, servo-drop=N "
-                   "(replies counted from 0), servo-lag=ANGLE, servo-stall=ANGLE; repeatable");
+                   "With --emulate: urg-corrupt=N, urg-drop=N, urg-garble=N, urg-unplug=N, "
+                   "servo-corrupt=N, servo-drop=N (replies counted from 0), servo-lag=ANGLE, "
+                   "servo-stall=ANGLE; repeatable");
     cmd.add_option("--noise", noise, "With --emulate: datasheet or ideal")->capture_default_str();
     cmd.add_option("--emulate-offset", true_offset,
                    "With --emulate: the laser's true optical offset, when --optical-offset is "

@@ -78,10 +78,11 @@ TEST(CliAcquire, DamagedAndLostRepliesAreAskedForAgain) {
     const test::TempDir tmp;
     const CliRun r = surfgrow(cat({"acquire --emulate room-corner", kShort,
                                    "--emulate-fault urg-corrupt=4 --emulate-fault urg-drop=9 "
-                                   "--emulate-fault servo-drop=3 -o ",
+                                   "--emulate-fault urg-garble=12 --emulate-fault servo-drop=3 "
+                                   "--emulate-fault servo-corrupt=8 -o ",
                                    q(tmp / "a.sgraw")}));
     ASSERT_EQ(r.code, 0) << r.out;
-    EXPECT_NE(r.out.find("(2 retries)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("(3 retries)"), std::string::npos) << r.out;  // the URG's
     EXPECT_FALSE(io::read_raw_scan(tmp / "a.sgraw").partial());
 }
 

@@ -57,6 +57,7 @@ TEST(Dynamixel, TheDriverReturnsTheAngleTheServoReportsNotTheOneAskedFor) {
     ServoFaults faults;
     faults.lag_ticks = -7;    // a loaded tilt unit settles 0.6 deg short
     faults.dropped = {0, 3};  // the ping's first status, and one poll's
+    faults.corrupt = {5};     // and one status with a wrong CRC: asked for again
     ServoEmulator servo(1, 40, faults);
     ServoDriver driver([&](std::string_view p) { return servo.reply(p); });
     driver.connect();

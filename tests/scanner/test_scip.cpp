@@ -238,6 +238,28 @@ TEST(UrgDriver, ConnectsAndScansThroughLostAndDamagedReplies) {
     EXPECT_FALSE(urg.laser_on());
 }
 
+TEST(UrgDriver, GarbledRepliesWithSoundChecksumsAreAskedForAgainThenRefused) {
+    UrgFaults faults;
+    faults.garbled = {0, 1, 3, 4, 5};
+    UrgEmulator urg(wall, faults);
+    // The checksums hold: only decoding the values finds them wrong.
+    (void)urg.reply("BM\n");
+    const scip::Reply bad = scip::parse_reply(urg.reply(scip::command(scip::DistanceRequest{})));
+    EXPECT_THROW((void)bad.distances(3), ProtocolError);
+    UrgDriver driver([&](std::string_view c) { return urg.reply(c); });
+    (void)driver.connect();
+    const std::vector<std::uint32_t> truth = wall();
+    EXPECT_EQ(driver.scan(44, 725),
+              std::vector<std::uint32_t>(truth.begin() + 44, truth.begin() + 726));
+    EXPECT_EQ(driver.retries(), 1);  // reply 1 garbled, 2 fine
+    try {
+        (void)driver.scan(44, 725);  // 3, 4, 5 garbled: three attempts
+        FAIL() << "no error";
+    } catch (const DeviceError& e) {
+        EXPECT_NE(std::string(e.what()).find("in 3 attempts"), std::string::npos) << e.what();
+    }
+}
+
 TEST(UrgDriver, AnUnpluggedSensorIsADeviceErrorAfterTheAttempts) {
     UrgFaults faults;
     faults.unplugged_after = 1;

@@ -25,7 +25,9 @@ std::string ServoEmulator::reply(std::string_view instruction) {
     const int index = sent_++;
     if (faults_.dropped.count(index)) return {};
     const auto status = [&](std::uint8_t error, const std::string& data = {}) {
-        return packet(id_, kStatus, std::string(1, static_cast<char>(error)) + data);
+        std::string out = packet(id_, kStatus, std::string(1, static_cast<char>(error)) + data);
+        if (faults_.corrupt.count(index)) out.back() = static_cast<char>(out.back() ^ 0x5a);
+        return out;
     };
     const std::int32_t target = std::clamp(goal_ + faults_.lag_ticks, 0, 4095);
     const bool stalled = position_ == faults_.stall_at && target != position_;

@@ -16,6 +16,7 @@ struct ServoFaults {
     std::int32_t lag_ticks = 0;  ///< it settles this far from the goal (a loaded or worn gear)
     std::int32_t stall_at = -1;  ///< it cannot pass this position: stops there, moving forever
     std::set<int> dropped;       ///< these status packets (counted from 0) are never sent
+    std::set<int> corrupt;       ///< these status packets arrive with a wrong CRC
 };
 
 /// An X-series servo as its packets show it: goal, present position moving towards the goal by

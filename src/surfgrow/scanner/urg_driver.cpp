@@ -112,9 +112,12 @@ std::vector<std::uint32_t> UrgDriver::scan(int first, int last) {
     std::string code = scip::command(req);
     code.pop_back();  // the line feed: request() adds the tag and its own
     const auto want = static_cast<std::size_t>(last - first + 1);
-    for (int turned_on = 0;; ++turned_on) {
+    int garbled = 0;
+    bool turned_on = false;
+    for (;;) {
         const scip::Reply r = request(code);
-        if (r.status == "10" && turned_on == 0) {  // off (a reset, a QT from elsewhere): on again
+        if (r.status == "10" && !turned_on) {  // off (a reset, a QT from elsewhere): on again
+            turned_on = true;
             (void)request("BM");
             continue;
         }
@@ -126,7 +129,13 @@ std::vector<std::uint32_t> UrgDriver::scan(int first, int last) {
             mm = r.distances(3);
             last_time_stamp_ms_ = r.time_stamp();
         } catch (const scip::ProtocolError& e) {
-            throw DeviceError("URG: " + code + ": " + e.what());
+            // Sound checksums over values that cannot be: a glitch, asked for again like a
+            // damaged reply, within the same attempts.
+            if (++garbled >= attempts_)
+                throw DeviceError("URG: " + code + ": " + e.what() + " in " +
+                                  std::to_string(attempts_) + " attempts");
+            ++retries_;
+            continue;
         }
         if (mm.size() != want)
             throw DeviceError("URG: " + code + " gave " + std::to_string(mm.size()) +

@@ -55,6 +55,9 @@ std::string UrgEmulator::distances(std::string_view echo, std::string_view statu
     }
     std::vector<std::string> lines{scip::encode(clock_ms_, 4)};
     for (std::string& l : scip::data_lines(values, chars)) lines.push_back(std::move(l));
+    if (faults_.garbled.count(index))  // '~' encodes nothing; format_reply sums it as it is
+        for (std::size_t l = 1; l < lines.size(); ++l)
+            std::fill(lines[l].begin(), lines[l].end(), '~');
     std::string bytes = scip::format_reply(echo, status, lines);
     if (faults_.corrupt.count(index)) {
         // The last data line's checksum is the byte before its line feed and the final one.

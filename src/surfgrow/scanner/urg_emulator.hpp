@@ -14,8 +14,11 @@ namespace surfgrow::scanner {
 /// Faults the emulator injects into its distance replies (GD/GS, and each scan of MD/MS),
 /// counted from 0 in the order it sends them.
 struct UrgFaults {
-    std::set<int> corrupt;     ///< these replies get a wrong checksum on their last data line
-    std::set<int> dropped;     ///< these replies are never sent (a time-out for the driver)
+    std::set<int> corrupt;  ///< these replies get a wrong checksum on their last data line
+    std::set<int> dropped;  ///< these replies are never sent (a time-out for the driver)
+    /// These replies are malformed with sound checksums: their data characters lie outside the
+    /// encoding (a firmware or line glitch the checksum does not catch).
+    std::set<int> garbled;
     int unplugged_after = -1;  ///< after this many distance replies, nothing at all is sent
 };
 
