@@ -74,6 +74,7 @@ void add_map_command(CLI::App& app) {
         std::string out = "map";
         std::string watch;
         std::string idle = "60s";
+        long long until = 0;
         std::string calibration;
         bool allow_partial = false;
         int trim = 1;
@@ -95,6 +96,8 @@ void add_map_command(CLI::App& app) {
                     "-o FOLDER), in name order, until none came for --idle");
     cmd->add_option("--idle", args->idle, "With --watch: stop after this long without a scan")
         ->capture_default_str();
+    add_count_option(*cmd, "--scans", args->until,
+                     "With --watch: stop once this many scans are mapped (0: no limit)");
     cmd->add_option("--calibration", args->calibration,
                     "Mounting to convert with (surfgrow calibrate's file)");
     cmd->add_flag("--allow-partial", args->allow_partial,
@@ -186,10 +189,17 @@ void add_map_command(CLI::App& app) {
         std::error_code ec;
         if (!fs::is_directory(args->watch, ec))
             throw Error(ErrorCode::kCannotOpen, cat({"--watch ", args->watch, ": not a folder"}));
+        if (args->until < 0)
+            throw Error(ErrorCode::kInvalidParameter, "--scans: 0 (no limit) or more");
+        const auto limit = static_cast<std::size_t>(args->until);
         auto last = std::chrono::steady_clock::now();
         for (;;) {
             const std::vector<std::string> found = new_scans(args->watch, seen);
-            for (const std::string& file : found) add(file);
+            for (const std::string& file : found) {
+                if (limit > 0 && map.scans() >= limit) return;
+                add(file);
+            }
+            if (limit > 0 && map.scans() >= limit) return;
             if (!found.empty()) last = std::chrono::steady_clock::now();
             if (std::chrono::steady_clock::now() - last >= idle) break;
             std::this_thread::sleep_for(std::chrono::milliseconds(100));
