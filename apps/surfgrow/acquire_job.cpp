@@ -63,19 +63,6 @@ scanner::TiltSpec parse_tilt(const std::string& text) {
     return t;
 }
 
-// "500ms", "2s".
-std::chrono::milliseconds parse_timeout(const std::string& text) {
-    double v = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, v);
-    const std::string_view unit(ptr, static_cast<std::size_t>(end - ptr));
-    if (ec != std::errc() || (unit != "ms" && unit != "s"))
-        throw Error(ErrorCode::kUsage, cat({"--timeout: '", text, "' is not a time (e.g. 500ms)"}));
-    const double ms = unit == "s" ? v * 1000 : v;
-    if (!(ms >= 10 && ms <= 60000)) invalid(cat({"--timeout ", text, ": 10ms .. 60s"}));
-    return std::chrono::milliseconds(static_cast<long long>(ms));
-}
-
 // A whole number after `key=` in a fault, bounded.
 int fault_count(std::string_view value, const std::string& fault) {
     int n = -1;
@@ -234,7 +221,7 @@ AcquiredScan take_scan(const AcquireSettings& a) {
         invalid(cat({"--servo-id ", std::to_string(a.servo_id), ": 0..252"}));
     if (a.attempts < 1 || a.attempts > 20)
         invalid(cat({"--attempts ", std::to_string(a.attempts), ": 1..20"}));
-    const std::chrono::milliseconds timeout = parse_timeout(a.timeout);
+    const std::chrono::milliseconds timeout = parse_duration(a.timeout, "--timeout", 10, 60000);
     scanner::UrgFaults urg_faults;
     scanner::dxl::ServoFaults servo_faults;
     if (!a.faults.empty() && a.emulate.empty())

@@ -109,6 +109,20 @@ double parse_angle_deg(std::string_view text, std::string_view option) {
     usage_error(option, {"unknown angle unit '", unit, "' (use deg or rad)"});
 }
 
+std::chrono::milliseconds parse_duration(std::string_view text, std::string_view option,
+                                         double min_ms, double max_ms) {
+    double value = 0;
+    std::string_view unit;
+    if (!split_number(text, value, unit, option) || (unit != "ms" && unit != "s"))
+        usage_error(option, {"'", text, "' is not a time (e.g. 500ms or 2s)"});
+    const double ms = unit == "s" ? value * 1000 : value;
+    if (!(ms >= min_ms && ms <= max_ms))
+        range_error(option, text,
+                    cat({"is not within ", std::to_string(static_cast<long long>(min_ms)),
+                         " ms .. ", std::to_string(static_cast<long long>(max_ms / 1000)), " s"}));
+    return std::chrono::milliseconds(static_cast<long long>(ms));
+}
+
 double unit_to_metres(std::string_view unit, std::string_view option) {
     double scale = 1;
     if (!unit_scale(trim(unit), scale))

@@ -1,6 +1,7 @@
 // Parsing and formatting shared by the subcommands: lengths with units, vectors, progress.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -34,6 +35,11 @@ double parse_length_m(std::string_view text, std::string_view option);
 /// is refused, as for lengths. Throws Error(kUsage) naming `option`; Error(kInvalidParameter)
 /// for a number beyond a double or not finite.
 double parse_angle_deg(std::string_view text, std::string_view option);
+
+/// Parses a time with its unit ("500ms", "2s") into milliseconds, within [min_ms, max_ms].
+/// Throws Error(kUsage) for no time, Error(kInvalidParameter) beyond the bounds, naming `option`.
+std::chrono::milliseconds parse_duration(std::string_view text, std::string_view option,
+                                         double min_ms, double max_ms);
 
 /// Metres per unit of a cloud: "m" -> 1, "cm" -> 0.01, "mm" -> 0.001. Throws Error(kUsage).
 double unit_to_metres(std::string_view unit, std::string_view option);

@@ -2,7 +2,6 @@
 // at a time to one map (pipeline/map.hpp); after each the result folder is refreshed as one
 // transaction, so a planner reading OUT always sees the map of a whole number of scans.
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -47,19 +46,6 @@ std::vector<std::string> new_scans(const std::string& dir, const std::set<std::s
     if (ec) throw Error(ErrorCode::kCannotOpen, cat({"cannot list ", dir, ": ", ec.message()}));
     std::sort(found.begin(), found.end());
     return found;
-}
-
-std::chrono::milliseconds parse_idle(const std::string& text) {
-    double v = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, v);
-    const std::string_view unit(ptr, static_cast<std::size_t>(end - ptr));
-    if (ec != std::errc() || (unit != "s" && unit != "ms"))
-        throw Error(ErrorCode::kUsage, cat({"--idle: '", text, "' is not a time (e.g. 60s)"}));
-    const double ms = unit == "s" ? v * 1000 : v;
-    if (!(ms >= 0 && ms <= 86400000))
-        throw Error(ErrorCode::kInvalidParameter, cat({"--idle ", text, ": 0s .. 24 h"}));
-    return std::chrono::milliseconds(static_cast<long long>(ms));
 }
 
 }  // namespace
@@ -123,7 +109,7 @@ void add_map_command(CLI::App& app) {
         const CloudUnits units = args->grow.units();
         if (units.metres != 1.0)
             throw Error(ErrorCode::kUsage, "map: raw scans are in metres; leave out --units");
-        const std::chrono::milliseconds idle = parse_idle(args->idle);
+        const std::chrono::milliseconds idle = parse_duration(args->idle, "--idle", 0, 86400000);
         MapConfig config;
         config.join_tolerance = args->join_tolerance;
         PipelineConfig& pc = config.pipeline;
@@ -149,13 +135,7 @@ void add_map_command(CLI::App& app) {
             seen.insert(file);
             scanner::RawScan raw = io::read_raw_scan(file);
             if (calibration) scanner::apply_calibration(raw, *calibration);
-            if (raw.partial() && !fuse.allow_partial)
-                throw Error(
-                    ErrorCode::kInvalidParameter,
-                    cat({file, ": a partial scan (", std::to_string(raw.spec.tilt.positions),
-                         " of ", std::to_string(raw.planned_positions),
-                         " tilt positions; it stopped: ", raw.stop_reason,
-                         "); --allow-partial maps it"}));
+            refuse_partial(file, raw, fuse.allow_partial, "maps");
             PointCloud points;
             try {
                 points = scanner::fuse_scans(std::span(&raw, 1), fuse);

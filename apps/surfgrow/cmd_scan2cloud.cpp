@@ -90,13 +90,7 @@ void add_scan2cloud_command(CLI::App& app) {
         }
         fuse.allow_partial = args->allow_partial;
         for (std::size_t k = 0; k < raws.size(); ++k)
-            if (raws[k].partial() && !fuse.allow_partial)
-                throw Error(ErrorCode::kInvalidParameter,
-                            cat({args->raws[k], ": a partial scan (",
-                                 std::to_string(raws[k].spec.tilt.positions), " of ",
-                                 std::to_string(raws[k].planned_positions),
-                                 " tilt positions; it stopped: ", raws[k].stop_reason,
-                                 "); --allow-partial fuses it"}));
+            refuse_partial(args->raws[k], raws[k], fuse.allow_partial, "fuses");
         const PointCloud cloud = scanner::fuse_scans(raws, fuse);
         io::WriteOptions options;
         options.write_scans = true;

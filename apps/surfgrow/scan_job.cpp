@@ -109,6 +109,14 @@ std::vector<std::string> raw_scan_files(const std::vector<std::string>& args) {
     return files;
 }
 
+void refuse_partial(const std::string& file, const scanner::RawScan& raw, bool allowed,
+                    std::string_view verb) {
+    if (!raw.partial() || allowed) return;
+    invalid(cat({file, ": a partial scan (", std::to_string(raw.spec.tilt.positions), " of ",
+                 std::to_string(raw.planned_positions), " tilt positions; it stopped: ",
+                 raw.stop_reason, "); --allow-partial ", verb, " it"}));
+}
+
 void ScanSettings::add_to(CLI::App& cmd) {
     cmd.add_option("--scene", scene,
                    "Built-in scene (ibeam-channel, room-corner, pipes, corridor, stairs) or a "

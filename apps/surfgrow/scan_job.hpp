@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "surfgrow/core/point_cloud.hpp"
@@ -78,6 +79,11 @@ void write_scan_outputs(const std::filesystem::path& dir, const ScanData& data,
 /// as its .sgraw files in name order, which is scan order. A folder without any is
 /// Error(kCannotOpen).
 std::vector<std::string> raw_scan_files(const std::vector<std::string>& args);
+
+/// Throws Error(kInvalidParameter) naming `file` and why it stopped when `raw` is a partial scan
+/// and `allowed` is false ("...; --allow-partial <verb> it").
+void refuse_partial(const std::string& file, const scanner::RawScan& raw, bool allowed,
+                    std::string_view verb);
 
 /// "scan-007.sgraw".
 std::string raw_scan_name(std::size_t k);

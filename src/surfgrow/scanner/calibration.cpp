@@ -67,6 +67,22 @@ std::vector<double> residuals(const std::vector<Reading>& rays, double h, double
     return r;
 }
 
+// d(residual)/d(h, zero) of each point by central differences; the zero's column is 0 when it
+// is not solved for.
+std::vector<Eigen::Vector2d> jacobian(const std::vector<Reading>& rays, double h, double zero,
+                                      bool with_zero) {
+    constexpr double dh = 1e-4, dz = 1e-5;
+    const std::vector<double> hp = residuals(rays, h + dh, zero),
+                              hm = residuals(rays, h - dh, zero);
+    std::vector<double> zp, zm;
+    if (with_zero) zp = residuals(rays, h, zero + dz), zm = residuals(rays, h, zero - dz);
+    std::vector<Eigen::Vector2d> j(rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i)
+        j[i] = Eigen::Vector2d((hp[i] - hm[i]) / (2 * dh),
+                               with_zero ? (zp[i] - zm[i]) / (2 * dz) : 0.0);
+    return j;
+}
+
 double rms(const std::vector<double>& r) {
     double s = 0;
     for (const double v : r) s += v * v;
@@ -155,18 +171,12 @@ CalibrationResult calibrate(std::span<const RawScan> scans, const CalibrationOpt
     for (int pass = 0; pass < 2; ++pass) {
         for (int iter = 0; iter < 30; ++iter) {
             const std::vector<double> r = residuals(on, h, zero);
-            constexpr double dh = 1e-4, dz = 1e-5;
-            const std::vector<double> hp = residuals(on, h + dh, zero),
-                                      hm = residuals(on, h - dh, zero);
-            std::vector<double> zp, zm;
-            if (with_zero) zp = residuals(on, h, zero + dz), zm = residuals(on, h, zero - dz);
+            const std::vector<Eigen::Vector2d> j = jacobian(on, h, zero, with_zero);
             Eigen::Matrix2d jtj = Eigen::Matrix2d::Zero();
             Eigen::Vector2d jtr = Eigen::Vector2d::Zero();
             for (std::size_t i = 0; i < r.size(); ++i) {
-                const Eigen::Vector2d j((hp[i] - hm[i]) / (2 * dh),
-                                        with_zero ? (zp[i] - zm[i]) / (2 * dz) : 0.0);
-                jtj += j * j.transpose();
-                jtr += j * r[i];
+                jtj += j[i] * j[i].transpose();
+                jtr += j[i] * r[i];
             }
             if (!with_zero) jtj(1, 1) = 1;
             normal_matrix = jtj;
@@ -198,20 +208,13 @@ CalibrationResult calibrate(std::span<const RawScan> scans, const CalibrationOpt
     // limits the estimate. Propagated: d(h, zero) = -(J'J)^-1 J' (dr/dc_k) c_k for each scan.
     if (o.range_scale_sigma > 0) {
         const Eigen::Matrix2d inv = normal_matrix.inverse();
+        const std::vector<Eigen::Vector2d> j = jacobian(on, h, zero, with_zero);  // once
         for (std::size_t k = 0; k < scans.size(); ++k) {
             constexpr double dc = 1e-4;
             const std::vector<double> up = residuals(on, h, zero, nullptr, k, 1 + dc);
             const std::vector<double> down = residuals(on, h, zero, nullptr, k, 1 - dc);
-            const std::vector<double> hp = residuals(on, h + 1e-4, zero),
-                                      hm = residuals(on, h - 1e-4, zero);
-            std::vector<double> zp, zm;
-            if (with_zero) zp = residuals(on, h, zero + 1e-5), zm = residuals(on, h, zero - 1e-5);
             Eigen::Vector2d jtc = Eigen::Vector2d::Zero();
-            for (std::size_t i = 0; i < r.size(); ++i) {
-                const Eigen::Vector2d j((hp[i] - hm[i]) / 2e-4,
-                                        with_zero ? (zp[i] - zm[i]) / 2e-5 : 0.0);
-                jtc += j * (up[i] - down[i]) / (2 * dc);
-            }
+            for (std::size_t i = 0; i < r.size(); ++i) jtc += j[i] * (up[i] - down[i]) / (2 * dc);
             const Eigen::Vector2d a = inv * jtc * o.range_scale_sigma;
             cov += a * a.transpose();
         }
