@@ -248,6 +248,9 @@ def main():
         print("strace cannot trace here (ptrace refused): skipped", file=sys.stderr)
         sys.exit(SKIP)
     only = set(filter(None, a.only.split(",")))
+    unknown = only - {case.name for case in cases()}
+    if unknown:
+        die(f"--only names no case: {sorted(unknown)}")
     with tempfile.TemporaryDirectory(prefix="surfgrow-crash-") as work:
         box_cloud(os.path.join(work, "box.xyz"))
         with open(os.path.join(work, "robot.json"), "w") as f:

@@ -33,6 +33,7 @@ std::string q(const fs::path& p) {
 const std::string kShort = " --tilt -10deg:10deg:1deg --readings 3 --timeout 100ms ";
 
 TEST(CliAcquire, AWholeEmulatedScanOfTheChannelGrowsAsWellAsASimulatedOne) {
+    SURFGROW_SKIP_UNDER_SANITIZERS();
     const test::TempDir tmp;
     const fs::path scans = tmp / "scans";
     CliRun r = surfgrow(cat({"acquire --emulate ibeam-channel -o ", q(scans)}));

@@ -346,6 +346,7 @@ TEST_F(CliSweep, MillimetreCloudGivesTheSameTableInMetres) {
 }
 
 TEST_F(CliSweep, GroundTruthAddsNormalError) {
+    SURFGROW_SKIP_UNDER_SANITIZERS();
     // The scan folder's cloud.ply has a truth label per point, scene.json lies beside it.
     const fs::path out = tmp_.path() / "truth";
     const CliRun r = surfgrow(cat({"sweep ", q(scan() / "cloud.ply"),

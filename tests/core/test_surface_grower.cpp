@@ -416,8 +416,9 @@ TEST(SurfaceGrower, RangeBandsCountEveryValidPoint) {
 // A mu beyond the whole cloud is a wrong unit or a typo: refused before minutes of work, whatever
 // its size (1e40 once overflowed into a wrong message); a mu within the cloud's extent is not.
 TEST(SurfaceGrower, MuBeyondTheWholeCloudIsRefused) {
+    // Coarse: a mu near the whole cloud makes every neighbourhood the whole cloud (N^2 work).
     const Scene s =
-        sample_scene({{{0, 0, 0.5}, Vec3d::UnitX(), Vec3d::UnitY(), 0.2, 0.15}}, 0.004, 0.0, 1);
+        sample_scene({{{0, 0, 0.5}, Vec3d::UnitX(), Vec3d::UnitY(), 0.2, 0.15}}, 0.01, 0.0, 1);
     Aabb box;
     for (const Vec3f& p : s.cloud.points) box.add(p.cast<double>());
     const double diagonal = box.size().norm();

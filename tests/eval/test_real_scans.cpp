@@ -43,6 +43,7 @@ double mu_for(const std::string& name) {
 }
 
 TEST(RealScans, NoAcceptedSurfaceIsALineOrABlob) {
+    SURFGROW_SKIP_UNDER_SANITIZERS();
     const auto root = real_data_dir();
     if (!root) GTEST_SKIP() << "no ../shared/data/real";
     std::vector<fs::path> files;

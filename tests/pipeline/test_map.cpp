@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "support/test_support.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/eval/evaluation.hpp"
 #include "surfgrow/eval/plane_evaluation.hpp"
@@ -58,6 +59,7 @@ scanner::Scene* MapTest::scene_ = nullptr;
 std::vector<scanner::RawScan>* MapTest::scans_ = nullptr;
 
 TEST_F(MapTest, ScanByScanIsAsGoodAsTheFusedCloudAtOnce) {
+    SURFGROW_SKIP_UNDER_SANITIZERS();
     const Map map = map_of(0);
     const PointCloud fused = scanner::fuse_scans(*scans_);
     // The map's cloud is the fused cloud, point for point.

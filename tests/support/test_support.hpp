@@ -2,7 +2,6 @@
 #pragma once
 
 #include <gtest/gtest.h>
-#include <Eigen/Geometry>  // Rect::normal() uses cross()
 
 #include <Eigen/Geometry>  // Vec3d::cross in Rect::normal() and sample_rect
 
@@ -17,6 +16,29 @@
 #include "surfgrow/core/point_cloud.hpp"
 
 namespace surfgrow::test {
+
+/// True in the ASan+UBSan build (SURFGROW_SANITIZE), where code runs 5-20x slower.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kUnderSanitizers = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kUnderSanitizers = true;
+#else
+inline constexpr bool kUnderSanitizers = false;
+#endif
+#else
+inline constexpr bool kUnderSanitizers = false;
+#endif
+
+/// Skips a full-scale accuracy test (whole scenes, real scans, every thread count) in the
+/// sanitizer build: the Release build runs it, and the sanitizers see the same code in the
+/// smaller tests; the full-scale ones alone took a third of CI's sanitizer stage.
+#define SURFGROW_SKIP_UNDER_SANITIZERS()                                                    \
+    do {                                                                                    \
+        if (::surfgrow::test::kUnderSanitizers)                                             \
+            GTEST_SKIP() << "full-scale accuracy: checked by the Release build, not under " \
+                            "the sanitizers";                                               \
+    } while (false)
 
 /// The repository root (tests run from there; SURFGROW_SOURCE_DIR is set by CTest).
 std::filesystem::path source_dir();
