@@ -102,21 +102,22 @@ constexpr double kMaxShareOver45 = 0.005;  // points more than 45 degrees off
 constexpr double kMinFacesDetected = 0.9;  // SegComp correct detection, T = 0.8
 
 // Where the defaults do not reach those bounds yet, the bound this scene is held to instead (the
-// gaps are in docs/algorithm.md, "What the disk test does not reach yet"): the I-beam channel's
-// 12-30 mm strips (stiffener ends, flange edges) and the splice plates' depth edges, narrower than
-// mu resolves and fringed with mixed pixels; the pipes' fused scans, whose cylinders meet the wall
-// and the floor in such strips; the channel's single scans' 1.5-2 m band, which is mostly the top
+// gaps are in docs/algorithm.md, "What the disk test does not reach yet"): on fused scans, the
+// I-beam channel's 12-30 mm strips (stiffener ends, flange edges), narrower than mu resolves,
+// whose points the next face's surfaces take, and the pipes', whose cylinders meet the wall and
+// the floor in such strips; the channel's single scans' 1.5-2 m band, which is mostly the top
 // flanges' 30 mm inner edges between two depth edges (a quarter of it unregistered); and the few
 // faces of the pipes and the corridor, where mixed pixels in a face's plane (15-25 % of its points)
-// or one face split between two bound planes costs 20-33 %.
+// or one face split between two bound planes costs 20-33 %. Single scans meet the > 45 degree
+// bound everywhere since mixed-pixel ramps are dropped (0.21-0.22 % on the channel).
 struct Held {
-    double over_45 = kMaxShareOver45;
+    double fused_over_45 = kMaxShareOver45;  // one scan: always kMaxShareOver45
     double faces = kMinFacesDetected;
     double single_band = kMinRegistered;  // per range band, one scan
 };
 Held held_to(const std::string& scene) {
-    // The channel's > 45 degree share moves with the draw of the pose errors (0.54-0.84 % for
-    // robustness_study --pose-seed 1..5) and with the platform's libm (aarch64: 0.83 %).
+    // The channel's fused > 45 degree share moves with the draw of the pose errors (0.43-0.75 %
+    // for robustness_study --pose-seed 1..5) and with the platform's libm (aarch64: +0.3 %).
     if (scene == "ibeam-channel") return {0.009, 0.75, 0.975};
     if (scene == "pipes") return {0.0095, 0.6, kMinRegistered};
     if (scene == "corridor") return {kMaxShareOver45, 0.8, kMinRegistered};
@@ -137,10 +138,11 @@ void expect_bounds(const Grown& g, const std::string& scene, bool fused) {
         EXPECT_GE(b.planar.fraction(), band_bound) << b.from_m << "-" << b.to_m << " m";
     }
     EXPECT_LE(r.normal_deg.p95, kMaxPatchP95);
-    EXPECT_LE(r.normal_over_45, held.over_45);
+    const double over_45 = fused ? held.fused_over_45 : kMaxShareOver45;
+    EXPECT_LE(r.normal_over_45, over_45);
     ASSERT_TRUE(r.planes.known);
     EXPECT_LE(r.planes.normal_deg.p95, kMaxPlaneP95);
-    EXPECT_LE(r.planes.over_45, held.over_45);
+    EXPECT_LE(r.planes.over_45, over_45);
     ASSERT_GT(r.planes.faces_scored, 0u);
     EXPECT_GE(double(r.planes.faces_detected) / double(r.planes.faces_scored), held.faces)
         << r.planes.faces_detected << " of " << r.planes.faces_scored;

@@ -25,12 +25,13 @@ struct Candidate {
 
 std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const PoolingConfig& cfg) {
     std::vector<std::uint8_t> lone;
-    return pool_normals(patches, cfg, lone, 0);
+    return pool_normals(patches, cfg, lone, {});
 }
 
 std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const PoolingConfig& cfg,
-                                std::vector<std::uint8_t>& lone, int min_neighbours) {
-    lone.assign(min_neighbours > 0 ? patches.size() : 0, 0);
+                                std::vector<std::uint8_t>& lone, const LoneRule& rule) {
+    const bool marks = rule.min_neighbours > 0;
+    lone.assign(marks ? patches.size() : 0, 0);
     std::vector<Vec3d> out;
     reserve_bulk(out, patches.size());
     out.resize(patches.size());
@@ -61,19 +62,27 @@ std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const Po
             const Vec3f q = index.local_point(s);
             Moments pooled = a.moments;
             int near = 0, coplanar = 0;
+            // Points behind this patch's plane here, and behind the planes across it.
+            auto in_plane = static_cast<double>(a.moments.n);
+            double elsewhere = 0;
             for (int r = 0; r < 9; ++r) {
                 const CubeIndex::Range run = table[9 * c + static_cast<std::size_t>(r)];
                 for (std::uint32_t t = run.begin; t < run.end; ++t) {
                     if (t == s || (index.local_point(t) - q).squaredNorm() > r2) continue;
                     const Candidate& b = cand[t];
                     ++near;
-                    if (std::abs(a.normal.dot(b.normal)) < cos_max) continue;
+                    if (std::abs(a.normal.dot(b.normal)) < cos_max) {
+                        elsewhere += static_cast<double>(b.moments.n);
+                        continue;
+                    }
                     const double offset = std::clamp(3.0 * std::max(a.sigma, b.sigma),
                                                      cfg.min_offset, cfg.max_offset);
                     const Vec3d d = b.centroid - a.centroid;
+                    // Parallel but offset (another layer, the far side of a plate): neither.
                     if (std::abs(a.normal.dot(d)) > offset || std::abs(b.normal.dot(d)) > offset)
                         continue;
                     ++coplanar;
+                    in_plane += static_cast<double>(b.moments.n);
                     pooled.n += b.moments.n;
                     pooled.sum += b.moments.sum;
                     pooled.sum_sq += b.moments.sum_sq;
@@ -82,7 +91,9 @@ std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const Po
             Vec3d n = fit_plane(pooled).normal;
             if (n.dot(a.normal) < 0) n = -n;
             out[orig[s]] = n;
-            if (min_neighbours > 0 && coplanar == 0 && near >= min_neighbours) lone[orig[s]] = 1;
+            if (marks && near >= rule.min_neighbours &&
+                (coplanar == 0 || in_plane < rule.minority_share * elsewhere))
+                lone[orig[s]] = 1;
         }
     }
     return out;

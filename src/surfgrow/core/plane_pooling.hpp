@@ -36,11 +36,21 @@ struct PoolingConfig {
 [[nodiscard]] std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches,
                                               const PoolingConfig& config);
 
-/// The same; `lone[k]` is set to 1 where patch k has at least `min_neighbours` patches within the
-/// radius but none in its plane: a patch that disagrees with everything around it, such as a fit
-/// tilted across an edge or a depth edge's mixed pixels.
+/// Which patches pooling marks as lone: patches that disagree with what is around them.
+struct LoneRule {
+    int min_neighbours = 0;  ///< 0: none is marked; else only patches with this many within reach
+    /// Also marked: a patch whose plane (its points and its coplanar neighbours') holds less than
+    /// this share of the points of the patches around it in other planes; 0 turns this off.
+    double minority_share = 0;
+};
+
+/// The same; `lone[k]` is set to 1 where patch k has at least `rule.min_neighbours` patches
+/// within the radius and none in its plane (a fit tilted across an edge), or its plane is a
+/// minority beside other planes (`rule.minority_share`: a depth edge's mixed pixels, one beam
+/// footprint wide between two faces). `lone` is left empty when `rule.min_neighbours` is 0.
 [[nodiscard]] std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches,
                                               const PoolingConfig& config,
-                                              std::vector<std::uint8_t>& lone, int min_neighbours);
+                                              std::vector<std::uint8_t>& lone,
+                                              const LoneRule& rule);
 
 }  // namespace surfgrow

@@ -114,6 +114,11 @@ constexpr double kMissRadiusPerMu = 2.0;
 constexpr std::size_t kFarLevels = 7;
 // A patch with at least this many patches around it, none of them in its plane, is dropped.
 constexpr int kLoneNeighbours = 3;
+// So is one whose plane holds less than this share of the points of the other planes around it:
+// a depth edge's mixed pixels make a ramp one beam footprint wide between two faces, locally a
+// plane, outweighed by the faces; a narrow real face is sampled across its width and keeps its
+// weight. The study that chose a fifth: docs/algorithm.md.
+constexpr double kMinorityShare = 0.2;
 // Fused clouds: a leftover that lies in another scan's layer of a surface, as far from it as this
 // many sigmas of the measured layer offsets, goes to that surface (attach_layer).
 constexpr double kLayerSigmas = 3.0;
@@ -940,7 +945,9 @@ void refine_normals(const GrowerConfig& cfg, const CubeIndex& index, int threads
     pc.threads = threads;
     std::vector<std::uint8_t> lone;
     const std::vector<Vec3d> pooled =
-        pool_normals(patches, pc, lone, cfg.plane_test == PlaneTest::kDisk ? kLoneNeighbours : 0);
+        pool_normals(patches, pc, lone,
+                     cfg.plane_test == PlaneTest::kDisk ? LoneRule{kLoneNeighbours, kMinorityShare}
+                                                        : LoneRule{});
     release(patches);
     for (std::size_t k = 0; k < surface_count; ++k) surfaces[k].normal = pooled[k];
     // A patch in no plane with its neighbours is a fit tilted across an edge: its members go to
