@@ -57,7 +57,16 @@ void add_calibrate_command(CLI::App& app) {
         scanner::CalibrationOptions options;
         options.trim_q = args->trim;
         options.seed = args->seed;
-        const scanner::CalibrationResult r = scanner::calibrate(raws, options);
+        const scanner::CalibrationResult r = [&] {
+            try {
+                return scanner::calibrate(raws, options);
+            } catch (const Error& e) {  // name the scans the estimate failed on
+                std::string named;
+                for (const std::string& raw : args->raws)
+                    named += (named.empty() ? "" : ", ") + raw;
+                throw Error(e.code(), cat({named, ": ", e.what()}));
+            }
+        }();
         io::write_calibration_file(out, r, files);
         if (args->quiet) return;
         char zero[128] = "not estimated (it needs scans from places across the surface)";

@@ -199,6 +199,17 @@ TEST(CliCalibrate, AWrongOpticalOffsetIsFoundAndScan2CloudAppliesIt) {
     EXPECT_EQ(r.code, 2) << r.out;
     r = surfgrow(cat({"calibrate ", q(tmp / "nothing-here"), " -o ", q(tmp / "x.json")}));
     EXPECT_EQ(r.code, 4) << r.out;
+    // A scan whose largest plane cannot tell the offset (the stairs: +- 100 mm) writes nothing
+    // that scan2cloud would then apply, and says which scans and why.
+    const fs::path stairs = tmp / "stairs";
+    ASSERT_EQ(surfgrow(cat({"scan --scene stairs --poses 1 -q -o ", q(stairs)})).code, 0);
+    r = surfgrow(cat({"calibrate ", q(stairs)}));
+    EXPECT_EQ(r.code, 3) << r.out;
+    EXPECT_NE(r.out.find(stairs.string() + ": calibrate: the largest plane in the scans cannot "
+                                           "tell the optical offset"),
+              std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(stairs / "calibration.json"));
 }
 
 TEST(CliMap, ScansArrivingInAFolderAreMappedAsTheyCome) {

@@ -5,13 +5,16 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/scanner/acquisition.hpp"
+#include "surfgrow/scanner/builtin_scenes.hpp"
 #include "surfgrow/scanner/calibration.hpp"
 #include "surfgrow/scanner/emulated_rig.hpp"
 #include "surfgrow/scanner/fuse.hpp"
+#include "surfgrow/scanner/scan_simulator.hpp"
 
 namespace surfgrow::scanner {
 namespace {
@@ -115,6 +118,26 @@ TEST(Calibration, ScansThatCannotTellTheZeroDoNotReportIt) {
     const CalibrationResult c = calibrate(scans);
     EXPECT_FALSE(c.zero_estimated);
     EXPECT_NEAR(c.calibration.optical_offset_m, 0.040, 0.003);
+}
+
+TEST(Calibration, APlaneThatCannotTellTheOffsetIsRefused) {
+    // The stairs scene's largest plane hardly bends with the offset: the estimate would come
+    // with a sigma of about 100 mm, and scan2cloud would apply it to every later scan.
+    const Scene scene(builtin_scene("stairs"));
+    auto sims =
+        ScanSimulator(scene, ScannerSpec{}).simulate(scan_poses(scene.description().scanner, 1), 1);
+    const std::vector<RawScan> raws{std::move(sims.at(0).raw)};
+    try {
+        (void)calibrate(raws);
+        ADD_FAILURE() << "an offset the scan cannot tell was reported";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::kInvalidParameter);
+        EXPECT_NE(std::string(e.what()).find("cannot tell the optical offset"), std::string::npos)
+            << e.what();
+    }
+    CalibrationOptions anything;
+    anything.max_offset_sigma_m = 10;
+    EXPECT_GT(calibrate(raws, anything).offset_sigma_m, 0.02);
 }
 
 TEST(Calibration, RefusesWhatItCannotUse) {

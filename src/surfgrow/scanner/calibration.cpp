@@ -22,6 +22,10 @@ namespace {
     throw Error(ErrorCode::kInvalidParameter, "calibrate: " + m);
 }
 
+std::string mm(double metres) {  // "25.5 mm"
+    return num(std::round(metres * 1e4) / 10) + " mm";
+}
+
 // One filtered reading, with what places it: its scan's pose, its tilt and pan, the offset's
 // in-plane part.
 struct Reading {
@@ -197,7 +201,9 @@ CalibrationResult calibrate(std::span<const RawScan> scans, const CalibrationOpt
             pass = -1;  // solve again for the offset alone
             continue;
         }
-        // Again on the points of the surface as now placed: within 4 sigma of it.
+        // Again on the points of the surface as now placed: within 4 sigma of it. Not after
+        // the last pass: its figures belong to the points it solved on.
+        if (pass == 1) break;
         for (std::size_t i = 0; i < all.size(); ++i) pts[i] = place(all[i], h, zero);
         select(plane, std::max(4 * std::sqrt(sigma2), 0.002));
     }
@@ -221,6 +227,12 @@ CalibrationResult calibrate(std::span<const RawScan> scans, const CalibrationOpt
     }
     out.calibration = {h, with_zero ? rad_to_deg(zero) : 0.0};
     out.offset_sigma_m = std::sqrt(cov(0, 0));
+    // A surface seen over few tilt rows, or edge-on, hardly bends with the offset: such an
+    // estimate would silently misplace every later scan converted with it.
+    if (!(out.offset_sigma_m <= o.max_offset_sigma_m))
+        invalid(cat({"the largest plane in the scans cannot tell the optical offset (", mm(h),
+                     " +- ", mm(out.offset_sigma_m),
+                     "): scan a floor or wall that fills many tilt rows, facing the scanner"}));
     out.zero_estimated = with_zero;
     out.zero_sigma_deg = with_zero ? rad_to_deg(std::sqrt(cov(1, 1))) : 0.0;
     out.plane = plane;

@@ -28,6 +28,9 @@ struct CalibrationOptions {
     /// not average away (colour, material, drift). URG-04LX: its datasheet's 1 % at 2 sigma,
     /// half of it systematic (NoiseModel): 0.5 % x sqrt(0.5). Part of the reported sigmas.
     double range_scale_sigma = 0.0035;
+    /// An offset known to worse than this is refused (an error, not a result): the surface
+    /// does not bend with it, e.g. a wall seen edge-on or over a few tilt rows.
+    double max_offset_sigma_m = 0.005;
 };
 
 struct CalibrationResult {
@@ -50,7 +53,8 @@ struct CalibrationResult {
 /// With several scans, their poses must be right and the same surface must be in each; the zero
 /// is estimated when the poses differ across the surface (e.g. a floor scanned from two places
 /// along it). Deterministic for a given seed. Throws Error(kInvalidParameter) for no scans,
-/// invalid ones, too few points on a plane (under 500), or partial scans.
+/// invalid ones, too few points on a plane (under 500), partial scans, or a plane that cannot
+/// tell the offset (its sigma above options.max_offset_sigma_m).
 [[nodiscard]] CalibrationResult calibrate(std::span<const RawScan> scans,
                                           const CalibrationOptions& options = {});
 
