@@ -160,6 +160,17 @@ TEST(PlanesIo, BadPlanesFilesAreRefusedWithTheProblemNamed) {
         {"missing field", [](json& j) { j["planes"][0].erase("polygons"); }, "polygons"},
         {"negative area", [](json& j) { j["planes"][0]["area"] = -1; }, "area"},
         {"holes not a list", [](json& j) { j["planes"][0]["polygons"][0]["holes"] = 3; }, "holes"},
+        // Counts and ids that no integer type holds (fuzz/crashes/planes_json): converting them
+        // was undefined behaviour.
+        {"count a huge float", [](json& j) { j["summary"]["patches_merged"] = 1.5e116; },
+         "patches_merged must be a whole number"},
+        {"count a fraction", [](json& j) { j["summary"]["points"] = 2.5; },
+         "points must be a whole number"},
+        {"count negative", [](json& j) { j["summary"]["degenerate"] = -1; },
+         "degenerate must be a whole number"},
+        {"patch id a float", [](json& j) { j["planes"][0]["patches"][0] = 1e30; },
+         "patch id must be a whole number"},
+        {"version a float", [](json& j) { j["version"] = 1e300; }, "version must be"},
     };
     for (const Case& c : cases) {
         json j = good;

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
 
@@ -188,6 +189,31 @@ TEST(ResultsIo, BadResultFilesAreRejectedClearly) {
     expect_code(dir / "other.json", ErrorCode::kMalformedInput);
     test::write_bytes(dir / "short.json", R"({"format": "surfgrow-result", "units": "m"})");
     expect_code(dir / "short.json", ErrorCode::kMalformedInput);
+    // A count no integer type holds (fuzz/crashes/surfaces_json: converting 2e107 to a count
+    // was undefined behaviour), a negative one, a fraction: refused by name.
+    {
+        const GrowerConfig cfg;
+        const GrowResult r = small_result(cfg);
+        ResultMeta meta;
+        meta.units = "m";
+        std::ostringstream out;
+        write_result_json(out, r, cfg, meta);
+        const auto good = nlohmann::json::parse(out.str());
+        const std::vector<nlohmann::json> bad_counts = {2.3e107, -3, 0.5};
+        for (const nlohmann::json& bad : bad_counts) {
+            nlohmann::json j = good;
+            j["summary"]["valid_points"] = bad;
+            test::write_bytes(dir / "count.json", j.dump());
+            expect_code(dir / "count.json", ErrorCode::kMalformedInput);
+            try {
+                (void)read_result_json(dir / "count.json");
+            } catch (const Error& e) {
+                EXPECT_NE(std::string(e.what()).find("valid_points must be a whole number"),
+                          std::string::npos)
+                    << e.what();
+            }
+        }
+    }
     test::write_bytes(dir / "labels.txt", "0\n1\nbanana\n");
     try {
         (void)read_labels_txt(dir / "labels.txt");

@@ -1,12 +1,15 @@
-// Field checks shared by the JSON readers of planes.json and coverage.json.
+// Field checks shared by the JSON readers (planes.json, coverage.json, surfaces.json, ...).
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/geometry.hpp"
@@ -64,6 +67,35 @@ inline Vec3d unit_of(const json& j, const char* what) {
     const Vec3d v = vec_of(j, what);
     check_unit(v, what);
     return v;
+}
+
+/// A count, id or version: a JSON integer within T's range. A float (1e20), a negative for an
+/// unsigned T or a larger number is refused: nlohmann's get<T>() would convert it with undefined
+/// behaviour or wrap it (found by fuzz/planes_json and fuzz/surfaces_json).
+template <class T>
+T integer_of(const json& j, const char* what) {
+    static_assert(std::is_integral_v<T>);
+    using Limits = std::numeric_limits<T>;
+    const auto refuse = [&] {
+        return std::invalid_argument(
+            cat({what, " must be a whole number from ", std::to_string(Limits::min()), " to ",
+                 std::to_string(Limits::max())}));
+    };
+    if (j.is_number_unsigned()) {  // nlohmann parses every integer >= 0 as unsigned
+        const auto v = j.get<std::uint64_t>();
+        if (v > static_cast<std::uint64_t>(Limits::max())) throw refuse();
+        return static_cast<T>(v);
+    }
+    if (j.is_number_integer()) {  // negative
+        const auto v = j.get<std::int64_t>();
+        if constexpr (std::is_unsigned_v<T>) {
+            throw refuse();
+        } else {
+            if (v < static_cast<std::int64_t>(Limits::min())) throw refuse();
+            return static_cast<T>(v);
+        }
+    }
+    throw refuse();
 }
 
 inline double non_negative(const json& j, const char* what) {

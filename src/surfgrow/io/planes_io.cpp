@@ -133,9 +133,8 @@ StoredPlanes parse_planes_json(std::string_view text, std::string_view source) {
     try {
         if (!j.is_object() || j.value("format", "") != "surfgrow-planes")
             malformed(file, "not a surfgrow planes file (no \"format\": \"surfgrow-planes\")");
-        if (j.at("version").get<int>() != 1)
-            malformed(file, cat({"version ", std::to_string(j.at("version").get<int>()),
-                                 " is not supported (1 is)"}));
+        if (const int version = integer_of<int>(j.at("version"), "version"); version != 1)
+            malformed(file, cat({"version ", std::to_string(version), " is not supported (1 is)"}));
         r.meta.units = string_of(j.at("units"), "units");
         r.meta.offset = vec_of(j.at("offset"), "offset");
         r.meta.input = j.contains("input") ? string_of(j.at("input"), "input") : std::string();
@@ -153,11 +152,13 @@ StoredPlanes parse_planes_json(std::string_view text, std::string_view source) {
         c.simplify_tolerance = non_negative(p.at("simplify_tolerance"), "simplify_tolerance");
         if (!(c.mu > 0) || !std::isfinite(c.mu)) throw std::invalid_argument("mu must be positive");
         const json& s = j.at("summary");
-        bp.stats.patches = s.at("patches").get<std::uint64_t>();
-        bp.stats.patches_merged = s.at("patches_merged").get<std::uint64_t>();
-        bp.stats.adjacent_pairs = s.at("adjacent_pairs").get<std::uint64_t>();
-        bp.stats.points = s.at("points").get<std::uint64_t>();
-        bp.stats.degenerate = s.at("degenerate").get<std::uint64_t>();
+        bp.stats.patches = integer_of<std::uint64_t>(s.at("patches"), "patches");
+        bp.stats.patches_merged =
+            integer_of<std::uint64_t>(s.at("patches_merged"), "patches_merged");
+        bp.stats.adjacent_pairs =
+            integer_of<std::uint64_t>(s.at("adjacent_pairs"), "adjacent_pairs");
+        bp.stats.points = integer_of<std::uint64_t>(s.at("points"), "points");
+        bp.stats.degenerate = integer_of<std::uint64_t>(s.at("degenerate"), "degenerate");
         bp.stats.area = s.at("area").get<double>();
         bp.stats.noise = s.at("noise").get<double>();
         if (bp.stats.patches > (std::uint64_t{1} << 31))
@@ -165,7 +166,7 @@ StoredPlanes parse_planes_json(std::string_view text, std::string_view source) {
         bp.plane_of_patch.assign(bp.stats.patches, -1);
         const json& list = j.at("planes");
         if (!list.is_array()) throw std::invalid_argument("\"planes\" is not a list");
-        if (list.size() != s.at("planes").get<std::size_t>())
+        if (list.size() != integer_of<std::size_t>(s.at("planes"), "planes"))
             throw std::invalid_argument(
                 cat({"the summary says ", s.at("planes").dump(), " planes but ",
                      std::to_string(list.size()), " are listed"}));
@@ -182,13 +183,13 @@ StoredPlanes parse_planes_json(std::string_view text, std::string_view source) {
                 throw std::invalid_argument("its axes are not normal x u_axis = v_axis");
             plane.area = non_negative(jp.at("area"), "its area");
             plane.rms = non_negative(jp.at("rms"), "its rms");
-            plane.point_count = jp.at("points").get<std::uint64_t>();
+            plane.point_count = integer_of<std::uint64_t>(jp.at("points"), "points");
             plane.degenerate = jp.at("degenerate").get<bool>();
             plane.closing_radius = non_negative(jp.at("closing_radius"), "its closing_radius");
             plane.bounds.add(vec_of(jp.at("bounds").at("min"), "its bounds") - r.meta.offset);
             plane.bounds.add(vec_of(jp.at("bounds").at("max"), "its bounds") - r.meta.offset);
             for (const json& id : jp.at("patches")) {
-                const auto s_id = id.get<std::uint64_t>();
+                const auto s_id = integer_of<std::uint64_t>(id, "a patch id");
                 if (s_id >= bp.plane_of_patch.size())
                     throw std::invalid_argument(
                         cat({"patch ", std::to_string(s_id), " is beyond the ",

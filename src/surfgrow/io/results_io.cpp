@@ -12,9 +12,12 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/file_bytes.hpp"
+#include "surfgrow/io/json_fields.hpp"
 #include "surfgrow/io/scan_files_common.hpp"
 
 namespace surfgrow::io {
+
+using json_fields::integer_of;
 
 namespace {
 
@@ -366,13 +369,13 @@ StoredResult parse_result_json(std::string_view text, std::string_view source) {
         r.meta.result_id = j.value("result_id", "");
         const auto& p = j.at("parameters");
         r.config.mu = p.at("mu").get<double>();
-        r.config.min_pts = p.at("min_pts").get<int>();
+        r.config.min_pts = integer_of<int>(p.at("min_pts"), "min_pts");
         r.config.alpha = p.at("alpha").get<double>();
         r.config.plane_test =
             p.value("plane_test", "paper") == "disk" ? PlaneTest::kDisk : PlaneTest::kPaper;
         r.config.plane_tolerance = p.at("plane_tolerance").get<double>();
         r.config.adaptive_factor = p.at("mu_max").get<double>() / r.config.mu;
-        r.config.seed = p.at("seed").get<std::uint64_t>();
+        r.config.seed = integer_of<std::uint64_t>(p.at("seed"), "seed");
         // The workspace: the occupancy grid needs it to index exactly the grown points again.
         auto finite_vec = [&](const nlohmann::json& v, std::string_view what) {
             const Vec3d x = vec_of(v);
@@ -390,14 +393,17 @@ StoredResult parse_result_json(std::string_view text, std::string_view source) {
         if (p.contains("crop_center"))
             r.config.crop.center = finite_vec(p["crop_center"], "crop_center");
         const auto& s = j.at("summary");
-        r.stats.points_in = s.at("points_in").get<std::uint64_t>();
-        r.stats.valid_points = s.at("valid_points").get<std::uint64_t>();
-        r.stats.invalid_points = s.at("invalid_points").get<std::uint64_t>();
-        r.stats.cropped_points = s.at("cropped_points").get<std::uint64_t>();
-        r.stats.surfaces = s.at("surfaces").get<std::uint64_t>();
-        r.stats.registered = s.at("registered").get<std::uint64_t>();
-        r.stats.registered_grown = s.at("registered_grown").get<std::uint64_t>();
-        r.stats.noise_points = s.at("noise_points").get<std::uint64_t>();
+        r.stats.points_in = integer_of<std::uint64_t>(s.at("points_in"), "points_in");
+        r.stats.valid_points = integer_of<std::uint64_t>(s.at("valid_points"), "valid_points");
+        r.stats.invalid_points =
+            integer_of<std::uint64_t>(s.at("invalid_points"), "invalid_points");
+        r.stats.cropped_points =
+            integer_of<std::uint64_t>(s.at("cropped_points"), "cropped_points");
+        r.stats.surfaces = integer_of<std::uint64_t>(s.at("surfaces"), "surfaces");
+        r.stats.registered = integer_of<std::uint64_t>(s.at("registered"), "registered");
+        r.stats.registered_grown =
+            integer_of<std::uint64_t>(s.at("registered_grown"), "registered_grown");
+        r.stats.noise_points = integer_of<std::uint64_t>(s.at("noise_points"), "noise_points");
         const std::string orientation = s.at("orientation").get<std::string>();
         bool known = false;
         for (OrientationSource o : {OrientationSource::kScanOrigins, OrientationSource::kViewpoint,
@@ -414,8 +420,8 @@ StoredResult parse_result_json(std::string_view text, std::string_view source) {
             surf.centroid = vec_of(js.at("centroid")) - r.meta.offset;
             surf.eigenvalues = vec_of(js.at("eigenvalues"));
             surf.radius = js.at("radius").get<double>();
-            surf.neighbours = js.at("neighbours").get<std::uint32_t>();
-            surf.point_count = js.at("points").get<std::uint32_t>();
+            surf.neighbours = integer_of<std::uint32_t>(js.at("neighbours"), "neighbours");
+            surf.point_count = integer_of<std::uint32_t>(js.at("points"), "points");
             surf.mean_residual = js.at("mean_residual").get<double>();
             surf.tolerance = js.value("tolerance", 0.0);
             surf.bounds.add(vec_of(js.at("bounds").at("min")) - r.meta.offset);
