@@ -160,8 +160,7 @@ StoredCoverage parse_coverage_json(std::string_view text, std::string_view sourc
     try {
         if (!j.is_object() || j.value("format", "") != "surfgrow-coverage")
             malformed(file, "not a surfgrow coverage file (no \"format\": \"surfgrow-coverage\")");
-        if (integer_of<int>(j.at("version"), "version") != 1)
-            malformed(file, "only version 1 is supported");
+        if (integer_at<int>(j, "version") != 1) malformed(file, "only version 1 is supported");
         r.meta.units = string_of(j.at("units"), "units");
         r.meta.offset = vec_of(j.at("offset"), "offset");
         r.meta.input = j.contains("input") ? string_of(j.at("input"), "input") : std::string();
@@ -182,9 +181,9 @@ StoredCoverage parse_coverage_json(std::string_view text, std::string_view sourc
         validate(c);
         const json& s = j.at("summary");
         CoverageStats& st = plan.stats;
-        st.goals = integer_of<std::uint64_t>(s.at("goals"), "goals");
-        st.planes = integer_of<std::uint64_t>(s.at("planes"), "planes");
-        st.transitions = integer_of<std::uint64_t>(s.at("transitions"), "transitions");
+        st.goals = integer_at<std::uint64_t>(s, "goals");
+        st.planes = integer_at<std::uint64_t>(s, "planes");
+        st.transitions = integer_at<std::uint64_t>(s, "transitions");
         st.area = s.at("area").get<double>();
         st.covered_area = s.at("covered_area").get<double>();
         st.coverage = s.at("coverage").get<double>();
@@ -193,11 +192,10 @@ StoredCoverage parse_coverage_json(std::string_view text, std::string_view sourc
         st.transition_length = s.at("transition_length").get<double>();
         st.goal_path_length = s.at("goal_path_length").get<double>();
         for (const json& jp : j.at("planes"))
-            plan.per_plane.push_back({integer_of<std::uint32_t>(jp.at("plane"), "plane"),
-                                      integer_of<std::uint32_t>(jp.at("goals"), "goals"),
-                                      integer_of<std::uint32_t>(jp.at("first_goal"), "first_goal"),
-                                      jp.at("area").get<double>(),
-                                      jp.at("covered_fraction").get<double>()});
+            plan.per_plane.push_back(
+                {integer_at<std::uint32_t>(jp, "plane"), integer_at<std::uint32_t>(jp, "goals"),
+                 integer_at<std::uint32_t>(jp, "first_goal"), jp.at("area").get<double>(),
+                 jp.at("covered_fraction").get<double>()});
         const json& goals = j.at("goals");
         if (!goals.is_array() || goals.size() != st.goals)
             throw std::invalid_argument(cat({"the summary says ", std::to_string(st.goals),
@@ -206,8 +204,8 @@ StoredCoverage parse_coverage_json(std::string_view text, std::string_view sourc
             where = cat({"goal ", std::to_string(k)});
             const json& jg = goals[k];
             CoverageGoal g;
-            g.plane = integer_of<std::uint32_t>(jg.at("plane"), "plane");
-            g.row = integer_of<std::uint32_t>(jg.at("row"), "row");
+            g.plane = integer_at<std::uint32_t>(jg, "plane");
+            g.row = integer_at<std::uint32_t>(jg, "row");
             g.position = vec_of(jg.at("position"), "its position") - r.meta.offset;
             g.normal = vec_of(jg.at("normal"), "its normal");
             g.direction = vec_of(jg.at("direction"), "its direction");

@@ -98,6 +98,12 @@ T integer_of(const json& j, const char* what) {
     throw refuse();
 }
 
+/// integer_of of an object's field, named by its key.
+template <class T>
+T integer_at(const json& object, const char* key) {
+    return integer_of<T>(object.at(key), key);
+}
+
 inline double non_negative(const json& j, const char* what) {
     if (!j.is_number()) throw std::invalid_argument(cat({what, " is not a number"}));
     const double v = j.get<double>();

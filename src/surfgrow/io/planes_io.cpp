@@ -133,7 +133,7 @@ StoredPlanes parse_planes_json(std::string_view text, std::string_view source) {
     try {
         if (!j.is_object() || j.value("format", "") != "surfgrow-planes")
             malformed(file, "not a surfgrow planes file (no \"format\": \"surfgrow-planes\")");
-        if (const int version = integer_of<int>(j.at("version"), "version"); version != 1)
+        if (const int version = integer_at<int>(j, "version"); version != 1)
             malformed(file, cat({"version ", std::to_string(version), " is not supported (1 is)"}));
         r.meta.units = string_of(j.at("units"), "units");
         r.meta.offset = vec_of(j.at("offset"), "offset");
@@ -152,13 +152,11 @@ StoredPlanes parse_planes_json(std::string_view text, std::string_view source) {
         c.simplify_tolerance = non_negative(p.at("simplify_tolerance"), "simplify_tolerance");
         if (!(c.mu > 0) || !std::isfinite(c.mu)) throw std::invalid_argument("mu must be positive");
         const json& s = j.at("summary");
-        bp.stats.patches = integer_of<std::uint64_t>(s.at("patches"), "patches");
-        bp.stats.patches_merged =
-            integer_of<std::uint64_t>(s.at("patches_merged"), "patches_merged");
-        bp.stats.adjacent_pairs =
-            integer_of<std::uint64_t>(s.at("adjacent_pairs"), "adjacent_pairs");
-        bp.stats.points = integer_of<std::uint64_t>(s.at("points"), "points");
-        bp.stats.degenerate = integer_of<std::uint64_t>(s.at("degenerate"), "degenerate");
+        bp.stats.patches = integer_at<std::uint64_t>(s, "patches");
+        bp.stats.patches_merged = integer_at<std::uint64_t>(s, "patches_merged");
+        bp.stats.adjacent_pairs = integer_at<std::uint64_t>(s, "adjacent_pairs");
+        bp.stats.points = integer_at<std::uint64_t>(s, "points");
+        bp.stats.degenerate = integer_at<std::uint64_t>(s, "degenerate");
         bp.stats.area = s.at("area").get<double>();
         bp.stats.noise = s.at("noise").get<double>();
         if (bp.stats.patches > (std::uint64_t{1} << 31))
@@ -166,7 +164,7 @@ StoredPlanes parse_planes_json(std::string_view text, std::string_view source) {
         bp.plane_of_patch.assign(bp.stats.patches, -1);
         const json& list = j.at("planes");
         if (!list.is_array()) throw std::invalid_argument("\"planes\" is not a list");
-        if (list.size() != integer_of<std::size_t>(s.at("planes"), "planes"))
+        if (list.size() != integer_at<std::size_t>(s, "planes"))
             throw std::invalid_argument(
                 cat({"the summary says ", s.at("planes").dump(), " planes but ",
                      std::to_string(list.size()), " are listed"}));
@@ -183,7 +181,7 @@ StoredPlanes parse_planes_json(std::string_view text, std::string_view source) {
                 throw std::invalid_argument("its axes are not normal x u_axis = v_axis");
             plane.area = non_negative(jp.at("area"), "its area");
             plane.rms = non_negative(jp.at("rms"), "its rms");
-            plane.point_count = integer_of<std::uint64_t>(jp.at("points"), "points");
+            plane.point_count = integer_at<std::uint64_t>(jp, "points");
             plane.degenerate = jp.at("degenerate").get<bool>();
             plane.closing_radius = non_negative(jp.at("closing_radius"), "its closing_radius");
             plane.bounds.add(vec_of(jp.at("bounds").at("min"), "its bounds") - r.meta.offset);

@@ -17,7 +17,7 @@
 
 namespace surfgrow::io {
 
-using json_fields::integer_of;
+using json_fields::integer_at;
 
 namespace {
 
@@ -369,13 +369,13 @@ StoredResult parse_result_json(std::string_view text, std::string_view source) {
         r.meta.result_id = j.value("result_id", "");
         const auto& p = j.at("parameters");
         r.config.mu = p.at("mu").get<double>();
-        r.config.min_pts = integer_of<int>(p.at("min_pts"), "min_pts");
+        r.config.min_pts = integer_at<int>(p, "min_pts");
         r.config.alpha = p.at("alpha").get<double>();
         r.config.plane_test =
             p.value("plane_test", "paper") == "disk" ? PlaneTest::kDisk : PlaneTest::kPaper;
         r.config.plane_tolerance = p.at("plane_tolerance").get<double>();
         r.config.adaptive_factor = p.at("mu_max").get<double>() / r.config.mu;
-        r.config.seed = integer_of<std::uint64_t>(p.at("seed"), "seed");
+        r.config.seed = integer_at<std::uint64_t>(p, "seed");
         // The workspace: the occupancy grid needs it to index exactly the grown points again.
         auto finite_vec = [&](const nlohmann::json& v, std::string_view what) {
             const Vec3d x = vec_of(v);
@@ -393,17 +393,14 @@ StoredResult parse_result_json(std::string_view text, std::string_view source) {
         if (p.contains("crop_center"))
             r.config.crop.center = finite_vec(p["crop_center"], "crop_center");
         const auto& s = j.at("summary");
-        r.stats.points_in = integer_of<std::uint64_t>(s.at("points_in"), "points_in");
-        r.stats.valid_points = integer_of<std::uint64_t>(s.at("valid_points"), "valid_points");
-        r.stats.invalid_points =
-            integer_of<std::uint64_t>(s.at("invalid_points"), "invalid_points");
-        r.stats.cropped_points =
-            integer_of<std::uint64_t>(s.at("cropped_points"), "cropped_points");
-        r.stats.surfaces = integer_of<std::uint64_t>(s.at("surfaces"), "surfaces");
-        r.stats.registered = integer_of<std::uint64_t>(s.at("registered"), "registered");
-        r.stats.registered_grown =
-            integer_of<std::uint64_t>(s.at("registered_grown"), "registered_grown");
-        r.stats.noise_points = integer_of<std::uint64_t>(s.at("noise_points"), "noise_points");
+        r.stats.points_in = integer_at<std::uint64_t>(s, "points_in");
+        r.stats.valid_points = integer_at<std::uint64_t>(s, "valid_points");
+        r.stats.invalid_points = integer_at<std::uint64_t>(s, "invalid_points");
+        r.stats.cropped_points = integer_at<std::uint64_t>(s, "cropped_points");
+        r.stats.surfaces = integer_at<std::uint64_t>(s, "surfaces");
+        r.stats.registered = integer_at<std::uint64_t>(s, "registered");
+        r.stats.registered_grown = integer_at<std::uint64_t>(s, "registered_grown");
+        r.stats.noise_points = integer_at<std::uint64_t>(s, "noise_points");
         const std::string orientation = s.at("orientation").get<std::string>();
         bool known = false;
         for (OrientationSource o : {OrientationSource::kScanOrigins, OrientationSource::kViewpoint,
@@ -420,8 +417,8 @@ StoredResult parse_result_json(std::string_view text, std::string_view source) {
             surf.centroid = vec_of(js.at("centroid")) - r.meta.offset;
             surf.eigenvalues = vec_of(js.at("eigenvalues"));
             surf.radius = js.at("radius").get<double>();
-            surf.neighbours = integer_of<std::uint32_t>(js.at("neighbours"), "neighbours");
-            surf.point_count = integer_of<std::uint32_t>(js.at("points"), "points");
+            surf.neighbours = integer_at<std::uint32_t>(js, "neighbours");
+            surf.point_count = integer_at<std::uint32_t>(js, "points");
             surf.mean_residual = js.at("mean_residual").get<double>();
             surf.tolerance = js.value("tolerance", 0.0);
             surf.bounds.add(vec_of(js.at("bounds").at("min")) - r.meta.offset);
