@@ -203,6 +203,33 @@ TEST(BoundPlanes, ParallelPlatesAStepApartStaySeparate) {
     EXPECT_NEAR(faces[1]->centroid.z(), 0.52, 1e-3);
 }
 
+TEST(BoundPlanes, ParallelStripsAStepApartAcrossAGapStaySeparate) {
+    // A valve body's face and the pipe behind it: parallel, 30 mm apart, 40 mm between them
+    // (within the gap bridging's reach). A plane tilted 5 degrees passes within the offset of
+    // both centroids; it must not pass for one face. The same strips in one plane are one face. The
+    // offset tolerance is that of a noisy scan (6 mm), which both centroids meet.
+    auto strips = [](double step) {
+        const Rect near{{0.075, 0, 0.5}, Vec3d::UnitX(), Vec3d::UnitY(), 0.075, 0.1};
+        const Rect far{{0.34, 0, 0.5 + step}, Vec3d::UnitX(), Vec3d::UnitY(), 0.15, 0.1};
+        return grow_rects({near, far}, 0.0005);
+    };
+    BoundPlaneConfig cfg;
+    cfg.max_offset = 0.006;
+    const Grown stepped = strips(0.03);
+    const BoundPlanes apart = planes_of(stepped, cfg);
+    const auto two = major(apart);
+    ASSERT_EQ(two.size(), 2u);
+    for (const BoundPlane* bp : two) {
+        EXPECT_LT(axis_angle_between(bp->normal, Vec3d::UnitZ()), 0.5 * kDeg);
+        EXPECT_LT(bp->rms, 0.002);
+    }
+    const Grown flat = strips(0.0);
+    const BoundPlanes together = planes_of(flat, cfg);
+    const auto one = major(together);
+    ASSERT_EQ(one.size(), 1u);
+    EXPECT_LT(axis_angle_between(one[0]->normal, Vec3d::UnitZ()), 0.5 * kDeg);
+}
+
 TEST(BoundPlanes, ACylinderIsCutIntoStripsNotOnePlane) {
     // 300 mm radius, quarter turn: pooled moments stop the region drifting round the curve.
     Grown g;

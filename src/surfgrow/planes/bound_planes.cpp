@@ -181,9 +181,20 @@ void absorb_fragments(std::span<const Vec3f> points, const Members& members,
     }
 }
 
+// How much worse than its own plane the pooled plane fits a region's points: the RMS of the
+// extra distance, from the offset of the region's centroid and the tilt across its extent. Two
+// parallel strips a step apart are always passed through by some tilted plane at both centroids;
+// the tilt shows here, over each strip's length.
+double misfit(const CentredMoments& m, const Fit& own, const Fit& pooled, const Vec3d& at) {
+    const Vec3d& n = pooled.normal;
+    const double tilt = n.dot(m.scatter * n) / m.n - own.eigenvalues[0];
+    const double offset = n.dot(m.mean - at);
+    return std::sqrt(std::max(tilt, 0.0) + offset * offset);
+}
+
 // Coplanar regions whose patches come within max_gap of each other (a face seen in bands between
 // occlusion shadows, a plate behind a stiffener) are one face: merged when both planes and their
-// pooled fit agree in angle, and each centroid lies within the offset of the pooled plane. Pairs
+// pooled fit agree in angle, and the pooled plane fits each within the offset (misfit). Pairs
 // are tried in region order; pooled moments keep chains of merges from drifting.
 void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8_t>& used,
                  const std::vector<std::int32_t>& region, const BoundPlaneConfig& cfg,
@@ -251,8 +262,8 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
         if (!parallel(fa.normal, fb.normal) || !parallel(fa.normal, fp.normal) ||
             !parallel(fb.normal, fp.normal))
             continue;
-        if (std::abs(fp.normal.dot(ma.mean - pooled.mean)) > cfg.max_offset ||
-            std::abs(fp.normal.dot(mb.mean - pooled.mean)) > cfg.max_offset)
+        if (misfit(ma, fa, fp, pooled.mean) > cfg.max_offset ||
+            misfit(mb, fb, fp, pooled.mean) > cfg.max_offset)
             continue;
         const std::uint32_t keep = std::min(a, b), gone = std::max(a, b);
         parent[gone] = keep;
