@@ -182,6 +182,42 @@ int main(int argc, char** argv) {
                         std::map<std::int32_t, std::uint64_t> comp;
                         for (std::size_t i = 0; i < cloud.size(); ++i)
                             if (pl[i] == top) ++comp[cloud.labels[i]];
+                        if (std::getenv("STUDY_MISSED_DIST")) {
+                            // Distance of the plane's points on no face to it, mm, and their
+                            // sigma-free histogram.
+                            const BoundPlane& bp = planes.planes[std::size_t(top)];
+                            int hist[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+                            for (std::size_t i = 0; i < cloud.size(); ++i) {
+                                if (pl[i] != top || cloud.labels[i] >= 0) continue;
+                                const double off =
+                                    std::abs(bp.normal.dot(cloud.points[i].cast<double>() -
+                                                           bp.centroid)) *
+                                    1000;
+                                ++hist[std::min(7, int(off))];
+                            }
+                            std::printf("        no-face points by mm off the plane (rms %.1f):",
+                                        bp.rms * 1000);
+                            for (int h : hist) std::printf(" %d", h);
+                            std::printf("\n");
+                        }
+                        if (std::getenv("STUDY_MISSED_PATCHES")) {
+                            const BoundPlane& bp = planes.planes[std::size_t(top)];
+                            for (const std::uint32_t k : bp.patches) {
+                                const Surface& s = r.surfaces[k];
+                                std::map<std::int32_t, int> fv;
+                                for (std::size_t i = 0; i < cloud.size(); ++i)
+                                    if (r.labels[i] == std::int32_t(k)) ++fv[cloud.labels[i]];
+                                std::printf(
+                                    "        patch %u: %u pts, r %.0f, angle %.1f, off "
+                                    "%.1f mm, home %.3f %.3f %.3f:",
+                                    k, s.point_count, s.radius * 1000,
+                                    axis_angle_between(s.normal, bp.normal) * 180 / M_PI,
+                                    1000 * bp.normal.dot(s.centroid - bp.centroid), s.home.x(),
+                                    s.home.y(), s.home.z());
+                                for (auto [fid, c] : fv) std::printf(" f%d:%d", fid, c);
+                                std::printf("\n");
+                            }
+                        }
                         std::printf("        plane %d holds:", top);
                         for (auto [t, c] : comp)
                             if (c * 50 >= plane_size[top])
