@@ -182,10 +182,9 @@ int main(int argc, char** argv) {
                         std::map<std::int32_t, std::uint64_t> comp;
                         for (std::size_t i = 0; i < cloud.size(); ++i)
                             if (pl[i] == top) ++comp[cloud.labels[i]];
+                        const BoundPlane& bp = planes.planes[std::size_t(top)];
                         if (std::getenv("STUDY_MISSED_DIST")) {
-                            // Distance of the plane's points on no face to it, mm, and their
-                            // sigma-free histogram.
-                            const BoundPlane& bp = planes.planes[std::size_t(top)];
+                            // The plane's points on no face, by whole mm off it (7: 7 or more).
                             int hist[8] = {0, 0, 0, 0, 0, 0, 0, 0};
                             for (std::size_t i = 0; i < cloud.size(); ++i) {
                                 if (pl[i] != top || cloud.labels[i] >= 0) continue;
@@ -201,12 +200,14 @@ int main(int argc, char** argv) {
                             std::printf("\n");
                         }
                         if (std::getenv("STUDY_MISSED_PATCHES")) {
-                            const BoundPlane& bp = planes.planes[std::size_t(top)];
+                            // Face votes of each member patch, in one pass over the cloud.
+                            std::map<std::int32_t, std::map<std::int32_t, int>> votes;
+                            for (const std::uint32_t k : bp.patches) votes[std::int32_t(k)];
+                            for (std::size_t i = 0; i < cloud.size(); ++i)
+                                if (auto v = votes.find(r.labels[i]); v != votes.end())
+                                    ++v->second[cloud.labels[i]];
                             for (const std::uint32_t k : bp.patches) {
                                 const Surface& s = r.surfaces[k];
-                                std::map<std::int32_t, int> fv;
-                                for (std::size_t i = 0; i < cloud.size(); ++i)
-                                    if (r.labels[i] == std::int32_t(k)) ++fv[cloud.labels[i]];
                                 std::printf(
                                     "        patch %u: %u pts, r %.0f, angle %.1f, off "
                                     "%.1f mm, home %.3f %.3f %.3f:",
@@ -214,7 +215,8 @@ int main(int argc, char** argv) {
                                     axis_angle_between(s.normal, bp.normal) * 180 / M_PI,
                                     1000 * bp.normal.dot(s.centroid - bp.centroid), s.home.x(),
                                     s.home.y(), s.home.z());
-                                for (auto [fid, c] : fv) std::printf(" f%d:%d", fid, c);
+                                for (auto [fid, c] : votes[std::int32_t(k)])
+                                    std::printf(" f%d:%d", fid, c);
                                 std::printf("\n");
                             }
                         }

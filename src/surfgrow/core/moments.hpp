@@ -56,6 +56,13 @@ struct CentredMoments {
         mean += delta * (o.n / total);
         n = total;
     }
+
+    /// The mean squared distance of the points to the plane with unit normal `normal` through
+    /// `through`: their spread along the normal plus their centroid's offset, squared.
+    [[nodiscard]] double mean_square_distance(const Vec3d& normal, const Vec3d& through) const {
+        const double offset = normal.dot(mean - through);
+        return normal.dot(scatter * normal) / n + offset * offset;
+    }
 };
 
 }  // namespace surfgrow

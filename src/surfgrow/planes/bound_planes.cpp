@@ -186,10 +186,7 @@ void absorb_fragments(std::span<const Vec3f> points, const Members& members,
 // parallel strips a step apart are always passed through by some tilted plane at both centroids;
 // the tilt shows here, over each strip's length.
 double misfit(const CentredMoments& m, const Fit& own, const Fit& pooled, const Vec3d& at) {
-    const Vec3d& n = pooled.normal;
-    const double tilt = n.dot(m.scatter * n) / m.n - own.eigenvalues[0];
-    const double offset = n.dot(m.mean - at);
-    return std::sqrt(std::max(tilt, 0.0) + offset * offset);
+    return std::sqrt(std::max(m.mean_square_distance(pooled.normal, at) - own.eigenvalues[0], 0.0));
 }
 
 // Coplanar regions whose patches come within max_gap of each other (a face seen in bands between
@@ -493,8 +490,7 @@ BoundPlane fit_region(std::span<const Vec3f> cloud_points, std::span<const Surfa
     const bool flip =
         votes != 0 ? votes < 0 : (weight != 0 ? weight < 0 : surfaces[list[0]].normal.dot(n) < 0);
     plane.normal = flip ? Vec3d(-n) : n;
-    plane.rms = std::sqrt(std::max(0.0, plane.normal.dot(all.scatter * plane.normal) / all.n +
-                                            std::pow(plane.normal.dot(all.mean - m.mean), 2)));
+    plane.rms = std::sqrt(std::max(0.0, all.mean_square_distance(plane.normal, m.mean)));
     plane.u_axis = principal_axis(plane.normal, all.scatter);
     plane.v_axis = plane.normal.cross(plane.u_axis);
     std::vector<Vec2d> flat;
