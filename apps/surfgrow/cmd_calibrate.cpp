@@ -76,10 +76,10 @@ void add_calibrate_command(CLI::App& app) {
         char buf[512];
         std::snprintf(buf, sizeof buf,
                       "optical offset %.1f mm +- %.1f mm (the scans say %.1f mm); servo zero %s; "
-                      "surface: %zu points, rms %.1f mm -> %.1f mm -> %s",
+                      "surface: %zu points, rms %.1f mm -> %.1f mm, bow %.1f mm -> %s",
                       1e3 * r.calibration.optical_offset_m, 1e3 * r.offset_sigma_m,
                       1e3 * raws.front().spec.optical_offset_m.z(), zero, r.points,
-                      1e3 * r.rms_before_m, 1e3 * r.rms_after_m, out.c_str());
+                      1e3 * r.rms_before_m, 1e3 * r.rms_after_m, 1e3 * r.bow_m, out.c_str());
         std::cout << buf << std::endl;
     });
 }

@@ -140,6 +140,39 @@ TEST(Calibration, APlaneThatCannotTellTheOffsetIsRefused) {
     EXPECT_GT(calibrate(raws, anything).offset_sigma_m, 0.02);
 }
 
+TEST(Calibration, ACurvedSurfaceIsRefused) {
+    // Inside a horizontal tank of radius R, its bottom 0.8 m below the axis: no plane, but the
+    // band of its bottom within the first inlier distance is the largest "plane", and an offset
+    // bent to flatten it would bend every later scan (R 4 m: 29 mm found for 40 mm; a bottom as
+    // gently curved as R 200 m still gives 36 mm). The flat floor passes with room to spare.
+    const Scene flat = floor_scene();
+    const CalibrationResult ok =
+        calibrate(std::vector<RawScan>{scan(flat, 0.040, 0.0, Vec3d::Zero(), 3)});
+    EXPECT_LT(ok.bow_m, 0.25 * CalibrationOptions{}.max_bow_m) << ok.bow_m;
+    for (const double radius : {4.0, 200.0}) {
+        SceneDescription d;
+        d.primitives.push_back({"tank", Cylinder{Vec3d(-6, 0, radius - 0.8),
+                                                 Vec3d(6, 0, radius - 0.8), radius, false}});
+        const Scene tank(std::move(d));
+        const std::vector<RawScan> raws{scan(tank, 0.040, 0.0, Vec3d::Zero(), 3)};
+        try {
+            const CalibrationResult c = calibrate(raws);
+            ADD_FAILURE() << "R " << radius << " m: a curved surface was calibrated on: offset "
+                          << c.calibration.optical_offset_m << ", bow " << c.bow_m;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ErrorCode::kInvalidParameter);
+            EXPECT_NE(std::string(e.what()).find("is not flat"), std::string::npos) << e.what();
+        }
+        CalibrationOptions anything;
+        anything.max_bow_m = 1;
+        const CalibrationResult c = calibrate(raws, anything);
+        std::printf("tank R %.0f m: offset %.1f mm +- %.1f, bow %.1f mm (floor: %.2f mm)\n", radius,
+                    1e3 * c.calibration.optical_offset_m, 1e3 * c.offset_sigma_m, 1e3 * c.bow_m,
+                    1e3 * ok.bow_m);
+        EXPECT_GT(c.bow_m, 1.5 * CalibrationOptions{}.max_bow_m);
+    }
+}
+
 TEST(Calibration, RefusesWhatItCannotUse) {
     EXPECT_THROW((void)calibrate(std::span<const RawScan>()), Error);
     const Scene empty{SceneDescription{}};

@@ -32,7 +32,8 @@ std::string calibration_to_json(const scanner::CalibrationResult& r,
                     {"d_m", r.plane.d},
                     {"points", r.points},
                     {"rms_before_m", r.rms_before_m},
-                    {"rms_after_m", r.rms_after_m}};
+                    {"rms_after_m", r.rms_after_m},
+                    {"bow_m", r.bow_m}};
     j["scans"] = scans;
     return j.dump(2) + "\n";
 }

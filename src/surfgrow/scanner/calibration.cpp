@@ -116,6 +116,41 @@ Plane largest_plane(const std::vector<Vec3d>& pts, double tol, std::uint64_t see
     return best;
 }
 
+// How far the points bow away from their plane: the RMS of the quadric in the plane's own
+// coordinates (u, v) that fits their signed distances best. The offset bends a plane the way it
+// bends with the tilt and is solved for; what is left and smooth is the surface's own shape.
+double bow(const std::vector<Vec3d>& pts, const std::vector<double>& dist, const Plane& plane) {
+    const Vec3d n = plane.normal;
+    const Vec3d u = n.unitOrthogonal(), v = n.cross(u);
+    Vec3d mean = Vec3d::Zero();
+    for (const Vec3d& p : pts) mean += p;
+    mean /= static_cast<double>(pts.size());
+    double extent = 0;
+    for (const Vec3d& p : pts) extent = std::max(extent, (p - mean).norm());
+    if (!(extent > 0)) return 0.0;
+    using Vec6 = Eigen::Matrix<double, 6, 1>;
+    auto basis = [&](const Vec3d& p) {  // scaled to about 1 for a well-conditioned fit
+        const double a = (p - mean).dot(u) / extent, b = (p - mean).dot(v) / extent;
+        Vec6 f;
+        f << 1, a, b, a * a, a * b, b * b;
+        return f;
+    };
+    Eigen::Matrix<double, 6, 6> ata = Eigen::Matrix<double, 6, 6>::Zero();
+    Vec6 atb = Vec6::Zero();
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        const Vec6 f = basis(pts[i]);
+        ata += f * f.transpose();
+        atb += f * dist[i];
+    }
+    const Vec6 c = ata.ldlt().solve(atb);
+    double s = 0;
+    for (const Vec3d& p : pts) {
+        const double q = basis(p).dot(c);
+        s += q * q;
+    }
+    return std::sqrt(s / static_cast<double>(pts.size()));
+}
+
 }  // namespace
 
 CalibrationResult calibrate(std::span<const RawScan> scans, const CalibrationOptions& o) {
@@ -233,6 +268,15 @@ CalibrationResult calibrate(std::span<const RawScan> scans, const CalibrationOpt
         invalid(cat({"the largest plane in the scans cannot tell the optical offset (", mm(h),
                      " +- ", mm(out.offset_sigma_m),
                      "): scan a floor or wall that fills many tilt rows, facing the scanner"}));
+    // A curved surface (a tank, a hull) flattened by a wrong offset: refused, it would bend
+    // every later scan the other way.
+    std::vector<Vec3d> placed(on.size());
+    for (std::size_t i = 0; i < on.size(); ++i) placed[i] = place(on[i], h, zero);
+    out.bow_m = bow(placed, r, plane);
+    if (!(out.bow_m <= o.max_bow_m))
+        invalid(cat({"the largest plane in the scans is not flat: its points bow ", mm(out.bow_m),
+                     " rms away from it once calibrated (at most ", mm(o.max_bow_m),
+                     "): scan a flat floor, wall or plate"}));
     out.zero_estimated = with_zero;
     out.zero_sigma_deg = with_zero ? rad_to_deg(std::sqrt(cov(1, 1))) : 0.0;
     out.plane = plane;

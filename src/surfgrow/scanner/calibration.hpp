@@ -31,6 +31,11 @@ struct CalibrationOptions {
     /// An offset known to worse than this is refused (an error, not a result): the surface
     /// does not bend with it, e.g. a wall seen edge-on or over a few tilt rows.
     double max_offset_sigma_m = 0.005;
+    /// A surface whose points, once calibrated, still bow away from their plane by more than
+    /// this (RMS of the best quadric through their distances) is refused: it is not flat (a
+    /// tank wall, a hull), and the offset would have been bent to flatten it. A flat floor
+    /// leaves well under a millimetre.
+    double max_bow_m = 0.002;
 };
 
 struct CalibrationResult {
@@ -46,6 +51,7 @@ struct CalibrationResult {
     std::size_t points = 0;     ///< points of the surface used
     double rms_before_m = 0.0;  ///< their distance to it as the scans were recorded
     double rms_after_m = 0.0;   ///< and with the estimate
+    double bow_m = 0.0;         ///< RMS of the smooth shape left in them (see max_bow_m)
 };
 
 /// Estimates the mounting from scans in which one flat surface (a wall, a floor, a steel plate:
@@ -53,8 +59,9 @@ struct CalibrationResult {
 /// With several scans, their poses must be right and the same surface must be in each; the zero
 /// is estimated when the poses differ across the surface (e.g. a floor scanned from two places
 /// along it). Deterministic for a given seed. Throws Error(kInvalidParameter) for no scans,
-/// invalid ones, too few points on a plane (under 500), partial scans, or a plane that cannot
-/// tell the offset (its sigma above options.max_offset_sigma_m).
+/// invalid ones, too few points on a plane (under 500), partial scans, a plane that cannot
+/// tell the offset (its sigma above options.max_offset_sigma_m) or one that is not flat (its
+/// bow above options.max_bow_m).
 [[nodiscard]] CalibrationResult calibrate(std::span<const RawScan> scans,
                                           const CalibrationOptions& options = {});
 
