@@ -405,6 +405,32 @@ int main(int argc, char** argv) {
                                 1000 * rad);
                         }
                     }
+                    if (const char* band = std::getenv("STUDY_UNREG_BAND")) {
+                        // Unregistered planar points within a range band, by face.
+                        double lo = 0, hi = 0;
+                        if (std::sscanf(band, "%lf,%lf", &lo, &hi) == 2) {
+                            std::map<std::int32_t, std::pair<std::uint64_t, std::uint64_t>> by;
+                            for (std::size_t i = 0; i < cloud.size(); ++i) {
+                                const std::int32_t f = cloud.labels[i];
+                                if (f < 0 || !scene.faces()[std::size_t(f)].planar()) continue;
+                                const Vec3d p = cloud.points[i].cast<double>();
+                                const double range =
+                                    (p - cloud.scan_origins[cloud.scan_index[i]]).norm();
+                                if (range < lo || range >= hi) continue;
+                                ++by[f].second;
+                                if (r.labels[i] < 0) ++by[f].first;
+                            }
+                            for (auto [f, c] : by)
+                                if (c.first > 0)
+                                    std::printf(
+                                        "      band face %d (%s): %llu of %llu unregistered\n", f,
+                                        scene.description()
+                                            .primitives[std::size_t(
+                                                scene.faces()[std::size_t(f)].primitive)]
+                                            .name.c_str(),
+                                        (unsigned long long)c.first, (unsigned long long)c.second);
+                        }
+                    }
                     if (const char* uf = std::getenv("STUDY_UNREG_FACE")) {
                         const std::int32_t face = std::atoi(uf);
                         for (std::size_t i = 0; i < cloud.size(); ++i) {
