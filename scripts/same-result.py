@@ -1,14 +1,26 @@
 #!/usr/bin/env python3
 """Whether two result folders hold the same result up to float rounding: labels.txt byte for byte,
-and in surfaces.json, planes.json and coverage.json the same structure, every string and integer
-equal (but result_id, a hash of the exact bytes) and every real number within a relative tolerance
-(of the larger magnitude, floored at 1e-3).
+and in surfaces.json, planes.json and coverage.json (and the goals of coverage.ply) the same
+structure, every string and integer equal (but result_id, a hash of the exact bytes) and every real
+number within a relative tolerance (of the larger magnitude, floored at 1e-3).
 Used where bytes cannot match: builds for another CPU architecture (scripts/check-aarch64.sh).
 Usage: same-result.py A B [--tolerance 1e-3]"""
 import argparse
 import json
+import struct
 import sys
 from pathlib import Path
+
+PLY_TYPES = {"float": "f", "double": "d", "uint": "I", "int": "i", "uchar": "B"}
+
+
+def ply_rows(path):
+    """The vertices of a binary little-endian PLY with one element (coverage.ply), as lists."""
+    data = path.read_bytes()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    fmt = "<" + "".join(PLY_TYPES[line.split()[1]] for line in data[:end].decode().splitlines()
+                        if line.startswith("property "))
+    return [list(row) for row in struct.iter_unpack(fmt, data[end:])]
 
 
 def differences(a, b, path, out):
@@ -49,10 +61,15 @@ def main():
     if (args.a / "labels.txt").read_bytes() != (args.b / "labels.txt").read_bytes():
         print("same-result: labels.txt differs", file=sys.stderr)
         ok = False
-    for name in ("surfaces.json", "planes.json", "coverage.json"):
+    for name in ("surfaces.json", "planes.json", "coverage.json", "coverage.ply"):
         out = []
-        differences(json.loads((args.a / name).read_text()), json.loads((args.b / name).read_text()),
-                    name, out)
+        if name.endswith(".ply"):
+            if not (args.a / name).exists() and not (args.b / name).exists():
+                continue  # a result folder written before the goals were binary
+            differences(ply_rows(args.a / name), ply_rows(args.b / name), name, out)
+        else:
+            differences(json.loads((args.a / name).read_text()),
+                        json.loads((args.b / name).read_text()), name, out)
         worst = max(out, default=(0.0, ""))
         print(f"same-result: {name}: {len(out)} numbers differ, largest relative difference "
               f"{worst[0]:.2g}{' (' + worst[1] + ')' if out else ''}", file=sys.stderr)

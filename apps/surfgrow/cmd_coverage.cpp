@@ -16,7 +16,7 @@ namespace surfgrow::cli {
 void add_coverage_command(CLI::App& app) {
     auto* cmd = app.add_subcommand(
         "coverage",
-        "Goals, approach poses and a path over a result's bound planes: coverage.json/csv");
+        "Goals, approach poses and a path over a result's bound planes: coverage.json/ply");
     struct Args {
         std::string dir;
         std::string cloud;
@@ -61,7 +61,7 @@ void add_coverage_command(CLI::App& app) {
                              dir.string(), " --cloud CLOUD` first, or give --cloud"}));
         }
         const CoveragePlan plan = plan_coverage(planes, result.surfaces, config);
-        io::stage_coverage(tx, plan, result.meta);
+        io::stage_coverage(tx, plan, result.meta, args->coverage.csv);
         tx.commit();
         if (!args->quiet) std::cout << coverage_summary(plan, result.meta.units) << std::endl;
     });

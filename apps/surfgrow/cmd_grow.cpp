@@ -45,13 +45,13 @@ void add_grow_command(CLI::App& app) {
     auto* robot = cmd->add_option_group("Robot outputs", "Written next to the surfaces by default");
     robot->add_flag("--no-planes", args->no_planes,
                     "Do not write planes.json/planes.ply (nor coverage, which needs them)");
-    robot->add_flag("--no-coverage", args->no_coverage, "Do not write coverage.json/coverage.csv");
+    robot->add_flag("--no-coverage", args->no_coverage, "Do not write coverage.json/coverage.ply");
     robot->add_flag("!--no-occupancy", args->outputs.files.occupancy,
                     "Do not write occupancy.ply/occupancy.json");
     robot->add_flag("!--no-octomap", args->outputs.files.octomap, "Do not write environment.bt");
     robot->add_flag("!--no-collision", args->collision, "Do not write collision_spheres.json");
     args->planes.add_to(*cmd->add_option_group("Bound planes (planes.json, planes.ply)"));
-    args->coverage.add_to(*cmd->add_option_group("Coverage (coverage.json, coverage.csv)"));
+    args->coverage.add_to(*cmd->add_option_group("Coverage (coverage.json, coverage.ply)"));
     cmd->callback([args] {
         const CloudUnits units = args->grow.units();
         const Stopwatch read;
@@ -64,6 +64,7 @@ void add_grow_command(CLI::App& app) {
         if (!args->no_planes) {
             config.planes = args->planes.config(units.metres, config.grow.mu, config.grow.threads);
             args->outputs.files.planes_obj = args->planes.obj;
+            args->outputs.files.coverage_csv = args->coverage.csv;
             // --start is in file coordinates: the cloud's offset moves it into the grower's frame.
             if (!args->no_coverage)
                 config.coverage =

@@ -102,7 +102,7 @@ void add_map_command(CLI::App& app) {
     robot->add_flag("!--no-occupancy", args->outputs.files.occupancy, "No occupancy");
     robot->add_flag("!--no-octomap", args->outputs.files.octomap, "No environment.bt");
     args->planes.add_to(*cmd->add_option_group("Bound planes (planes.json, planes.ply)"));
-    args->coverage.add_to(*cmd->add_option_group("Coverage (coverage.json, coverage.csv)"));
+    args->coverage.add_to(*cmd->add_option_group("Coverage (coverage.json, coverage.ply)"));
     cmd->callback([args] {
         if (args->raws.empty() && args->watch.empty())
             throw Error(ErrorCode::kUsage, "map: give raw scans, --watch FOLDER, or both");
@@ -120,6 +120,7 @@ void add_map_command(CLI::App& app) {
             pc.planes = args->planes.config(units.metres, pc.grow.mu, pc.grow.threads);
             if (!args->no_coverage)
                 pc.coverage = args->coverage.config(units.metres, Vec3d::Zero(), pc.grow.threads);
+            args->outputs.files.coverage_csv = args->coverage.csv;
         }
         pc.occupancy = args->outputs.files.occupancy || args->outputs.files.octomap;
         scanner::FuseOptions fuse;

@@ -40,6 +40,8 @@ void CoverageOptions::add_to(CLI::App& cmd) {
         cmd.add_option("--tilt", tilt, "Tilt used, degrees within the band (default: MIN)");
     cmd.add_option("--spacing", spacing, "Planning grid (default: blast radius / 3)");
     cmd.add_option("--start", start, "Tool start position x,y,z with unit");
+    cmd.add_flag("--coverage-csv", csv,
+                 "Also write coverage.csv (the goals as text; coverage.ply holds them in binary)");
 }
 
 CoverageConfig CoverageOptions::config(double metres, const Vec3d& offset, int threads) const {

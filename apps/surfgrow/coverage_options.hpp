@@ -17,6 +17,7 @@ struct CoverageOptions {
     CLI::Option* tilt_option = nullptr;  // set by add_to(); --tilt counts only when given
     std::string spacing;                 // empty: blast radius / 3
     std::string start;                   // empty: none
+    bool csv = false;                    // also coverage.csv
 
     /// Registers the options on a subcommand (keep the object alive while it parses).
     void add_to(CLI::App& cmd);

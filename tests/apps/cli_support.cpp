@@ -117,6 +117,9 @@ std::size_t write_layer_fixtures(const GrownBox& box) {
     std::ostringstream coverage_file;
     io::write_coverage_json(coverage_file, plan, box.result.meta);
     write_bytes(box.out / "coverage.json", coverage_file.str());
+    std::ostringstream goals_file;
+    io::write_coverage_ply(goals_file, plan, box.result.meta);
+    write_bytes(box.out / io::kCoverageGoalsFile, goals_file.str());
     return plan.goals.size();
 }
 

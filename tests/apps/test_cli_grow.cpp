@@ -59,16 +59,27 @@ class CliGrow : public ::testing::Test {
 };
 
 TEST_F(CliGrow, WritesEveryOutputAndTheSummaryLine) {
-    const CliRun r = surfgrow("grow " + q(input_) + " -o " + q(dir_ / "out") + " --csv");
+    const CliRun r =
+        surfgrow("grow " + q(input_) + " -o " + q(dir_ / "out") + " --csv --coverage-csv");
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_NE(r.out.find(std::to_string(cloud_.size()) + " points -> "), std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find("% registered"), std::string::npos) << r.out;
     for (const char* f :
          {"surfaces.ply", "surfaces.json", "surfaces.csv", "labels.txt", "run.json", "surfaces.png",
-          "planes.json", "planes.ply", "coverage.json", "coverage.csv", "occupancy.ply",
-          "occupancy.json", "environment.bt", "collision_spheres.json"})
+          "planes.json", "planes.ply", "coverage.json", "coverage.ply", "coverage.csv",
+          "occupancy.ply", "occupancy.json", "environment.bt", "collision_spheres.json"})
         EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / f)) << f;
+    // The goals open as a plain PLY cloud with normals (what Open3D and CloudCompare see).
+    const PointCloud goals = io::read_cloud(dir_ / "out" / "coverage.ply");
+    EXPECT_GT(goals.size(), 100u);
+    EXPECT_EQ(goals.normals.size(), goals.size());
+    // The goals' text form only on request; the binary one is far smaller.
+    EXPECT_LT(3 * fs::file_size(dir_ / "out" / "coverage.ply"),
+              fs::file_size(dir_ / "out" / "coverage.csv"));
+    ASSERT_EQ(surfgrow("grow " + q(input_) + " -q -o " + q(dir_ / "out")).code, 0);
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "coverage.csv"));
+    EXPECT_TRUE(fs::exists(dir_ / "out" / "coverage.ply"));
     // Labels: one per input point, NaN points unregistered, ids within range.
     const auto labels = io::read_labels_txt(dir_ / "out" / "labels.txt");
     ASSERT_EQ(labels.size(), cloud_.size());
@@ -100,9 +111,10 @@ TEST_F(CliGrow, ByteIdenticalOutputsForAnyThreadCount) {
     }
     for (const char* f :
          {"surfaces.ply", "surfaces.json", "labels.txt", "surfaces.png", "planes.json",
-          "planes.ply", "coverage.json", "coverage.csv", "occupancy.ply", "occupancy.json",
+          "planes.ply", "coverage.json", "coverage.ply", "occupancy.ply", "occupancy.json",
           "environment.bt", "collision_spheres.json"}) {
         const std::string ref = test::read_bytes(dir_ / "t1" / f);
+        EXPECT_FALSE(ref.empty()) << f;
         EXPECT_EQ(test::read_bytes(dir_ / "t2" / f), ref) << f;
         EXPECT_EQ(test::read_bytes(dir_ / "t4" / f), ref) << f;
         EXPECT_EQ(test::read_bytes(dir_ / "t100000" / f), ref) << f;
@@ -124,9 +136,11 @@ TEST_F(CliGrow, RobotOutputsMatchTheirSubcommands) {
     ASSERT_EQ(surfgrow(cat({"planes ", q(sub), c})).code, 0);
     ASSERT_EQ(surfgrow(cat({"coverage ", q(sub), " -q"})).code, 0);
     ASSERT_EQ(surfgrow(cat({"occupancy ", q(sub), c})).code, 0);
-    for (const char* f : {"planes.json", "planes.ply", "coverage.json", "coverage.csv",
-                          "occupancy.ply", "occupancy.json", "environment.bt"})
+    for (const char* f : {"planes.json", "planes.ply", "coverage.json", "coverage.ply",
+                          "occupancy.ply", "occupancy.json", "environment.bt"}) {
+        EXPECT_TRUE(fs::exists(out / f)) << f;
         EXPECT_EQ(test::read_bytes(sub / f), test::read_bytes(out / f)) << f;
+    }
     // --stats reports each robot output; --no-coverage keeps the planes.
     const CliRun r = surfgrow(cat({"grow ", q(input_), " -o ", q(dir_ / "nc"),
                                    " --seed 4 --stats --no-coverage --no-picture"}));
@@ -254,7 +268,7 @@ TEST_F(CliGrow, ARunReplacesEveryEarlierOutputAndKeepsTheUsersFiles) {
     const CliRun r = surfgrow("grow " + q(input_) + " --seed 7 --no-planes --no-coverage -o " +
                               q(out) + "/ --no-picture");
     ASSERT_EQ(r.code, 0) << r.out;
-    for (const char* stale : {"planes.json", "planes.ply", "coverage.json", "coverage.csv"})
+    for (const char* stale : {"planes.json", "planes.ply", "coverage.json", "coverage.ply"})
         EXPECT_FALSE(fs::exists(out / stale)) << stale << " of the earlier run survived";
     EXPECT_EQ(test::read_bytes(out / "notes.txt"), "blasting starts at 9");
     EXPECT_TRUE(fs::exists(out / "surfaces.json"));
@@ -297,7 +311,7 @@ TEST_F(CliGrow, FilesOfAnotherResultAreRefused) {
     ASSERT_EQ(p.code, 0) << p.out;
     EXPECT_NE(p.out.find("coverage.json"), std::string::npos) << p.out;
     EXPECT_FALSE(fs::exists(a / "coverage.json"));
-    EXPECT_FALSE(fs::exists(a / "coverage.csv"));
+    EXPECT_FALSE(fs::exists(a / "coverage.ply"));
     EXPECT_EQ(surfgrow("coverage " + q(a) + " -q").code, 0);
 }
 

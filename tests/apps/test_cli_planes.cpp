@@ -76,7 +76,7 @@ TEST_F(CliPlanes, PlanesThenCoverageWriteEveryOutput) {
     const PlaneMesh mesh = io::read_planes_ply(out_ / "planes.ply");
     EXPECT_FALSE(mesh.triangles.empty());
 
-    r = surfgrow(cat({"coverage ", q(out_)}));
+    r = surfgrow(cat({"coverage ", q(out_), " --coverage-csv"}));
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_NE(r.out.find(" goals on "), std::string::npos) << r.out;
     const io::StoredCoverage cov = io::read_coverage_json(out_ / "coverage.json");
@@ -85,11 +85,18 @@ TEST_F(CliPlanes, PlanesThenCoverageWriteEveryOutput) {
     EXPECT_EQ(cov.plan.config.standoff, 0.3);
     const auto rows = io::read_coverage_csv(out_ / "coverage.csv");
     ASSERT_EQ(rows.size(), cov.plan.goals.size());
-    for (const CoverageGoal& g : rows) {
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+        const CoverageGoal& g = rows[k];
         const double a = angle_between(-g.tool_axis, g.normal) * 180 / M_PI;
         ASSERT_GE(a, 5 - 1e-6);
         ASSERT_LE(a, 40 + 1e-6);
+        // The text and the binary goals (coverage.ply, floats) are the same plan.
+        ASSERT_LT((g.position - cov.plan.goals[k].position).norm(), 1e-6) << k;
+        ASSERT_EQ(g.plane, cov.plan.goals[k].plane) << k;
     }
+    // Without --coverage-csv the text form of an earlier run does not survive.
+    ASSERT_EQ(surfgrow(cat({"coverage ", q(out_), " -q"})).code, 0);
+    EXPECT_FALSE(fs::exists(out_ / "coverage.csv"));
 }
 
 // The picture grow drew is coloured by plane: planes with other settings draws it again, the
@@ -127,8 +134,8 @@ TEST_F(CliPlanes, CoverageOptionsCarryUnitsAndReachThePlan) {
     ASSERT_TRUE(cov.plan.config.start.has_value());
     EXPECT_EQ(*cov.plan.config.start, Vec3d(0, 0, 1));
     for (const CoverageGoal& g : cov.plan.goals) {
-        EXPECT_NEAR(g.tilt_deg, 20.0, 1e-9);
-        EXPECT_NEAR((g.tool_position - g.position).norm(), 0.5, 1e-9);
+        EXPECT_NEAR(g.tilt_deg, 20.0, 1e-4);  // stored as float
+        EXPECT_NEAR((g.tool_position - g.position).norm(), 0.5, 1e-6);
     }
 }
 
@@ -141,7 +148,7 @@ TEST_F(CliPlanes, CoverageComputesMissingPlanesFromTheCloud) {
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_TRUE(fs::is_regular_file(out_ / "planes.json"));
     EXPECT_TRUE(fs::is_regular_file(out_ / "planes.ply"));
-    EXPECT_TRUE(fs::is_regular_file(out_ / "coverage.csv"));
+    EXPECT_TRUE(fs::is_regular_file(out_ / "coverage.ply"));
 }
 
 TEST_F(CliPlanes, SameBytesForAnyThreadCount) {
@@ -155,8 +162,10 @@ TEST_F(CliPlanes, SameBytesForAnyThreadCount) {
         ASSERT_EQ(surfgrow(cat({"coverage ", q(o), " --threads ", std::to_string(t)})).code, 0);
     }
     for (const char* f :
-         {"planes.json", "planes.ply", "planes.obj", "coverage.json", "coverage.csv"})
+         {"planes.json", "planes.ply", "planes.obj", "coverage.json", "coverage.ply"}) {
+        EXPECT_TRUE(fs::exists(dir_ / "t1" / f)) << f;
         EXPECT_EQ(test::read_bytes(dir_ / "t1" / f), test::read_bytes(dir_ / "t3" / f)) << f;
+    }
 }
 
 TEST_F(CliPlanes, MillimetreCloudsGiveTheSamePlanes) {
@@ -196,9 +205,10 @@ TEST_F(CliPlanes, AnEmptyResultGivesEmptyOutputs) {
     CliRun r = surfgrow(cat({"planes ", q(e), " --cloud ", q(dir_ / "empty.ply")}));
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_NE(r.out.find("0 surfaces -> 0 planes"), std::string::npos) << r.out;
-    r = surfgrow(cat({"coverage ", q(e)}));
+    r = surfgrow(cat({"coverage ", q(e), " --coverage-csv"}));
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_TRUE(io::read_coverage_csv(e / "coverage.csv").empty());
+    EXPECT_TRUE(io::read_coverage_json(e / "coverage.json").plan.goals.empty());
 }
 
 struct BadCase {
@@ -212,7 +222,8 @@ TEST_F(CliPlanes, BadInputsGiveClearErrorsAndLeaveOutputsAlone) {
     ASSERT_EQ(surfgrow(cat({"planes ", q(out_), " --cloud ", q(cloud_), " -q"})).code, 0);
     ASSERT_EQ(surfgrow(cat({"coverage ", q(out_), " -q"})).code, 0);
     const std::string planes_before = test::read_bytes(out_ / "planes.json");
-    const std::string coverage_before = test::read_bytes(out_ / "coverage.csv");
+    const std::string coverage_before = test::read_bytes(out_ / "coverage.ply");
+    ASSERT_FALSE(coverage_before.empty());
     PointCloud other = l_cloud();
     other.points.resize(other.points.size() / 2);
     io::write_cloud(dir_ / "other.ply", other);
@@ -272,7 +283,7 @@ TEST_F(CliPlanes, BadInputsGiveClearErrorsAndLeaveOutputsAlone) {
         EXPECT_NE(r.out.find(bc.expect), std::string::npos) << bc.name << ": " << r.out;
     }
     EXPECT_EQ(test::read_bytes(out_ / "planes.json"), planes_before);
-    EXPECT_EQ(test::read_bytes(out_ / "coverage.csv"), coverage_before);
+    EXPECT_EQ(test::read_bytes(out_ / "coverage.ply"), coverage_before);
     for (const auto& e : fs::directory_iterator(out_))
         EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }

@@ -1,7 +1,9 @@
 // planes.json, planes.ply/obj, coverage.json/csv: round trips, determinism and bad shapes.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <set>
@@ -264,41 +266,86 @@ TEST(PlanesIo, ObjHasOneObjectPerPlane) {
     EXPECT_EQ(objects, with_triangles.size());
 }
 
-TEST(CoverageIo, JsonAndCsvRoundTrip) {
+// coverage.json as version 1 wrote it (goals inline), from the version 2 file and the plan: a
+// result folder of an older surfgrow.
+json coverage_json_v1(const CoveragePlan& plan, const ResultMeta& meta) {
+    json j = json::parse(bytes_of([&](std::ostream& o) { write_coverage_json(o, plan, meta); }));
+    j["version"] = 1;
+    j.erase("goals_file");
+    auto vec = [](const Vec3d& v) { return json::array({v.x(), v.y(), v.z()}); };
+    json goals = json::array();
+    for (std::size_t k = 0; k < plan.goals.size(); ++k) {
+        const CoverageGoal& g = plan.goals[k];
+        const Eigen::Quaterniond& q = g.orientation;
+        goals.push_back({{"seq", k},
+                         {"plane", g.plane},
+                         {"row", g.row},
+                         {"position", vec(g.position + meta.offset)},
+                         {"normal", vec(g.normal)},
+                         {"direction", vec(g.direction)},
+                         {"tool_position", vec(g.tool_position + meta.offset)},
+                         {"tool_axis", vec(g.tool_axis)},
+                         {"orientation", {q.w(), q.x(), q.y(), q.z()}},
+                         {"tilt_deg", g.tilt_deg},
+                         {"from_home", g.from_home},
+                         {"transition", g.transition}});
+    }
+    j["goals"] = goals;
+    return j;
+}
+
+// Goals read back from the binary file (floats for unit vectors; positions in float, or double
+// when georeferenced) and from text (exact to the digits printed).
+void expect_same_goals(const std::vector<CoverageGoal>& back, const CoveragePlan& plan,
+                       double position_tol, double unit_tol, const char* what) {
+    ASSERT_EQ(back.size(), plan.goals.size()) << what;
+    for (std::size_t k = 0; k < plan.goals.size(); ++k) {
+        const CoverageGoal &g = back[k], &a = plan.goals[k];
+        EXPECT_EQ(g.plane, a.plane) << what;
+        EXPECT_EQ(g.row, a.row) << what;
+        EXPECT_LT((g.position - a.position).norm(), position_tol) << what << " goal " << k;
+        EXPECT_LT((g.tool_position - a.tool_position).norm(), position_tol) << what;
+        EXPECT_LT((g.normal - a.normal).norm(), unit_tol) << what;
+        EXPECT_LT((g.tool_axis - a.tool_axis).norm(), unit_tol) << what;
+        EXPECT_LT((g.orientation.coeffs() - a.orientation.coeffs()).norm(), unit_tol) << what;
+        EXPECT_NEAR(g.tilt_deg, a.tilt_deg, 1e-4) << what;
+        EXPECT_EQ(g.transition, a.transition) << what;
+        EXPECT_EQ(g.from_home, a.from_home) << what;
+    }
+}
+
+TEST(CoverageIo, JsonPlyAndCsvRoundTrip) {
     const Fixture& f = fixture();
     const CoveragePlan& plan = f.plan;
     ASSERT_GT(plan.goals.size(), 100u);
-    test::TempDir dir;
-    const ResultMeta meta = georeferenced();
-    write_atomically(dir / "coverage.json",
-                     [&](std::ostream& o) { write_coverage_json(o, plan, meta); });
-    write_atomically(dir / "coverage.csv",
-                     [&](std::ostream& o) { write_coverage_csv(o, plan, meta); });
-    const StoredCoverage back = read_coverage_json(dir / "coverage.json");
-    EXPECT_EQ(back.plan.stats.goals, plan.stats.goals);
-    EXPECT_EQ(back.plan.stats.coverage, plan.stats.coverage);
-    EXPECT_EQ(back.plan.stats.tool_path_length, plan.stats.tool_path_length);
-    EXPECT_EQ(back.plan.config.blast_radius, plan.config.blast_radius);
-    EXPECT_EQ(back.plan.per_plane.size(), plan.per_plane.size());
-    const std::vector<CoverageGoal> rows = read_coverage_csv(dir / "coverage.csv", meta.offset);
-    ASSERT_EQ(back.plan.goals.size(), plan.goals.size());
-    ASSERT_EQ(rows.size(), plan.goals.size());
-    for (std::size_t k = 0; k < plan.goals.size(); ++k) {
-        for (const CoverageGoal* g : {&back.plan.goals[k], &rows[k]}) {
-            const CoverageGoal& a = plan.goals[k];
-            EXPECT_EQ(g->plane, a.plane);
-            EXPECT_EQ(g->row, a.row);
-            EXPECT_LT((g->position - a.position).norm(), 1e-8);
-            EXPECT_LT((g->tool_position - a.tool_position).norm(), 1e-8);
-            EXPECT_EQ(g->tool_axis, a.tool_axis);
-            EXPECT_EQ(g->orientation.coeffs(), a.orientation.coeffs());
-            EXPECT_EQ(g->transition, a.transition);
-            EXPECT_EQ(g->from_home, a.from_home);
-        }
-        EXPECT_EQ(back.plan.goals[k].direction, plan.goals[k].direction);
+    for (const ResultMeta& meta : {georeferenced(), ResultMeta{}}) {
+        const bool wide = meta.offset != Vec3d::Zero();
+        test::TempDir dir;
+        write_atomically(dir / "coverage.json",
+                         [&](std::ostream& o) { write_coverage_json(o, plan, meta); });
+        write_atomically(dir / "coverage.ply",
+                         [&](std::ostream& o) { write_coverage_ply(o, plan, meta); });
+        write_atomically(dir / "coverage.csv",
+                         [&](std::ostream& o) { write_coverage_csv(o, plan, meta); });
+        const StoredCoverage back = read_coverage_json(dir / "coverage.json");
+        EXPECT_EQ(back.goals_file, "coverage.ply");
+        EXPECT_EQ(back.plan.stats.goals, plan.stats.goals);
+        EXPECT_EQ(back.plan.stats.coverage, plan.stats.coverage);
+        EXPECT_EQ(back.plan.stats.tool_path_length, plan.stats.tool_path_length);
+        EXPECT_EQ(back.plan.config.blast_radius, plan.config.blast_radius);
+        EXPECT_EQ(back.plan.per_plane.size(), plan.per_plane.size());
+        expect_same_goals(back.plan.goals, plan, wide ? 1e-8 : 1e-5, 1e-6, "coverage.ply");
+        expect_same_goals(read_coverage_csv(dir / "coverage.csv", meta.offset), plan, 1e-8, 1e-12,
+                          "coverage.csv");
+        // Binary: far smaller than the text it replaces.
+        EXPECT_LT(fs::file_size(dir / "coverage.ply") * 2, fs::file_size(dir / "coverage.csv"));
+        // An older folder's coverage.json, goals inline, still reads.
+        test::write_bytes(dir / "coverage.json", coverage_json_v1(plan, meta).dump());
+        fs::remove(dir / "coverage.ply");
+        const StoredCoverage v1 = read_coverage_json(dir / "coverage.json");
+        EXPECT_TRUE(v1.goals_file.empty());
+        expect_same_goals(v1.plan.goals, plan, 1e-8, 1e-12, "version 1");
     }
-    EXPECT_EQ(bytes_of([&](std::ostream& o) { write_coverage_csv(o, plan, meta); }),
-              test::read_bytes(dir / "coverage.csv"));
 }
 
 TEST(CoverageIo, BadRobotFilesAreRefusedWithTheLineNamed) {
@@ -339,9 +386,8 @@ TEST(CoverageIo, BadRobotFilesAreRefusedWithTheLineNamed) {
             << c.name;
         EXPECT_NE(message.find(c.expect), std::string::npos) << c.name << ": " << message;
     }
-    // JSON: wrong shapes.
-    const json good = json::parse(
-        bytes_of([&](std::ostream& o) { write_coverage_json(o, f.plan, ResultMeta{}); }));
+    // JSON (version 1, goals inline): wrong shapes.
+    const json good = coverage_json_v1(f.plan, ResultMeta{});
     const std::vector<std::pair<std::function<void(json&)>, const char*>> mutations = {
         {[](json& j) {
              j["goals"][3]["position"] = {1, 2};
@@ -373,6 +419,65 @@ TEST(CoverageIo, BadRobotFilesAreRefusedWithTheLineNamed) {
         EXPECT_NE(message.find(expect), std::string::npos) << message;
     }
     EXPECT_EQ(code_of([&] { (void)read_coverage_csv(dir / "none.csv"); }), ErrorCode::kCannotOpen);
+
+    // Version 2: the goals file it names, and what that holds.
+    ResultMeta meta;
+    meta.result_id = "0123456789abcdef";
+    const std::string v2 = bytes_of([&](std::ostream& o) { write_coverage_json(o, f.plan, meta); });
+    const std::string ply = bytes_of([&](std::ostream& o) { write_coverage_ply(o, f.plan, meta); });
+    const auto read_v2 = [&](const std::string& json_text, const std::string& ply_bytes,
+                             std::string* message) {
+        test::write_bytes(dir / "coverage.json", json_text);
+        fs::remove(dir / "coverage.ply");
+        if (!ply_bytes.empty()) test::write_bytes(dir / "coverage.ply", ply_bytes);
+        return code_of([&] { (void)read_coverage_json(dir / "coverage.json"); }, message);
+    };
+    std::string message;
+    EXPECT_EQ(read_v2(v2, "", &message), ErrorCode::kCannotOpen);
+    EXPECT_NE(message.find("coverage.ply"), std::string::npos) << message;
+    json outside = json::parse(v2);
+    outside["goals_file"] = "../coverage.ply";
+    EXPECT_EQ(read_v2(outside.dump(), ply, &message), ErrorCode::kMalformedInput);
+    EXPECT_NE(message.find("beside it"), std::string::npos) << message;
+    ResultMeta other = meta;
+    other.result_id = "fedcba9876543210";
+    EXPECT_EQ(read_v2(v2, bytes_of([&](std::ostream& o) { write_coverage_ply(o, f.plan, other); }),
+                      &message),
+              ErrorCode::kMalformedInput);
+    EXPECT_NE(message.find("another plan"), std::string::npos) << message;
+    CoveragePlan fewer = f.plan;
+    fewer.goals.pop_back();
+    EXPECT_EQ(read_v2(v2, bytes_of([&](std::ostream& o) { write_coverage_ply(o, fewer, meta); }),
+                      &message),
+              ErrorCode::kMalformedInput);
+    EXPECT_NE(message.find("goals but"), std::string::npos) << message;
+    json newer = json::parse(v2);
+    newer["version"] = 3;
+    EXPECT_EQ(read_v2(newer.dump(), ply, &message), ErrorCode::kMalformedInput);
+    EXPECT_NE(message.find("versions 1 and 2"), std::string::npos) << message;
+    // The binary goals: truncated, another layout, a value that is not finite, not unit.
+    const std::size_t body = ply.find("end_header\n") + 11;
+    const std::size_t stride = (ply.size() - body) / f.plan.goals.size();
+    std::string nan_goal = ply, long_normal = ply, other_layout = ply;
+    const float nan = std::numeric_limits<float>::quiet_NaN(), two = 2.0f;
+    std::memcpy(nan_goal.data() + body + 5 * stride, &nan, 4);          // goal 5's x
+    std::memcpy(long_normal.data() + body + 2 * stride + 12, &two, 4);  // goal 2's nx
+    other_layout.replace(other_layout.find("float tilt_deg"), 14, "float tilt_rad");
+    const std::vector<std::pair<std::string, const char*>> plys = {
+        {ply.substr(0, ply.size() - 1), "truncated"},
+        {ply + "x", "too long"},
+        {other_layout, "layout"},
+        {nan_goal, "goal 5 is not finite"},
+        {long_normal, "goal 2: its normal"},
+        {"ply\nformat ascii 1.0\nend_header\n", "layout"},
+        {"not a ply", "not a PLY"},
+    };
+    for (const auto& [bytes, expect] : plys) {
+        EXPECT_EQ(code_of([&] { (void)parse_coverage_ply(bytes, "coverage.ply"); }, &message),
+                  ErrorCode::kMalformedInput)
+            << expect;
+        EXPECT_NE(message.find(expect), std::string::npos) << expect << ": " << message;
+    }
 }
 
 }  // namespace

@@ -254,10 +254,10 @@ TEST(ResultOutputs, StagesEveryFileOfAPipelineResultTogether) {
         tx.commit();
     }
     for (const char* f : {"surfaces.ply", "surfaces.json", "labels.txt", "planes.json",
-                          "planes.ply", "coverage.json", "coverage.csv", "occupancy.ply",
+                          "planes.ply", "coverage.json", "coverage.ply", "occupancy.ply",
                           "occupancy.json", "environment.bt", "collision_spheres.json"})
         EXPECT_TRUE(std::filesystem::is_regular_file(dir / f)) << f;
-    for (const char* f : {"surfaces.csv", "planes.obj"})
+    for (const char* f : {"surfaces.csv", "planes.obj", "coverage.csv"})
         EXPECT_FALSE(std::filesystem::exists(dir / f)) << f;
     EXPECT_TRUE(summary.octomap_written);
     EXPECT_EQ(summary.octomap.occupied, summary.occupied_cubes);
@@ -294,8 +294,8 @@ TEST(ResultOutputs, FilesFollowTheChoiceAndTheStagesRun) {
     for (const char* f : {"surfaces.ply", "surfaces.json", "surfaces.csv", "planes.json",
                           "planes.ply", "planes.obj", "occupancy.ply", "occupancy.json"})
         EXPECT_TRUE(std::filesystem::is_regular_file(dir / f)) << f;
-    for (const char* f :
-         {"labels.txt", "coverage.json", "environment.bt", "collision_spheres.json"})
+    for (const char* f : {"labels.txt", "coverage.json", "coverage.ply", "environment.bt",
+                          "collision_spheres.json"})
         EXPECT_FALSE(std::filesystem::exists(dir / f)) << f;
 }
 

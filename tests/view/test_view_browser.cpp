@@ -13,6 +13,7 @@
 #include "headless_chromium.hpp"
 #include "support/test_support.hpp"
 #include "surfgrow/core/text.hpp"
+#include "surfgrow/io/coverage_io.hpp"
 #include "surfgrow/io/planes_io.hpp"
 #include "surfgrow/render/png.hpp"
 #include "surfgrow/render/renderer.hpp"
@@ -213,10 +214,10 @@ TEST_F(ViewInBrowser, BoundPlanesAndCoveragePathDraw) {
     std::vector<Pixel> plane_pixels, goal_pixels;
     for (const BoundPlane& p : planes.planes.planes)
         if (const auto px = project(p.centroid + planes.meta.offset)) plane_pixels.push_back(*px);
-    const json coverage = json::parse(test::read_bytes(dir_->path() / "layered" / "coverage.json"));
-    for (const json& g : coverage["goals"])
-        if (const auto px = project(Vec3d(g["position"][0], g["position"][1], g["position"][2])))
-            goal_pixels.push_back(*px);
+    const io::StoredCoverage coverage =
+        io::read_coverage_json(dir_->path() / "layered" / "coverage.json");
+    for (const CoverageGoal& g : coverage.plan.goals)
+        if (const auto px = project(g.position + coverage.meta.offset)) goal_pixels.push_back(*px);
     EXPECT_GE(plane_pixels.size(), 4u);
     EXPECT_EQ(goal_pixels.size(), goals_);
 

@@ -1,7 +1,10 @@
 #include "surfgrow/io/coverage_io.hpp"
 
+#include <bit>
+#include <cassert>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -9,6 +12,7 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/file_bytes.hpp"
+#include "surfgrow/io/fixed_ply_header.hpp"
 #include "surfgrow/io/json_fields.hpp"
 #include "surfgrow/io/output_buffer.hpp"
 
@@ -25,6 +29,28 @@ Eigen::Quaterniond quaternion_of(double w, double x, double y, double z) {
     return q;
 }
 
+static_assert(std::endian::native == std::endian::little,
+              "coverage.ply is written and read on little-endian hosts only");
+
+// coverage.ply's vertex properties after x, y, z (whose type depends on the offset).
+constexpr const char* kGoalProperties[] = {
+    "float nx",       "float ny",       "float nz",   "float dx", "float dy",
+    "float dz",       "X tool_x",       "X tool_y",   "X tool_z", "float axis_x",
+    "float axis_y",   "float axis_z",   "float qw",   "float qx", "float qy",
+    "float qz",       "float tilt_deg", "uint plane", "uint row", "uchar transition",
+    "uchar from_home"};
+
+// Bytes of one goal: 2 positions of 3 coordinates, 14 floats, 2 uints, 2 uchars.
+std::size_t goal_bytes(bool wide) {
+    return 6 * (wide ? 8 : 4) + 14 * 4 + 2 * 4 + 2;
+}
+
+std::string goal_property(const char* p, bool wide) {
+    std::string s(p);
+    if (s[0] == 'X') s.replace(0, 1, wide ? "double" : "float");
+    return s;
+}
+
 }  // namespace
 
 void write_coverage_json(std::ostream& out, const CoveragePlan& plan, const ResultMeta& meta) {
@@ -32,7 +58,7 @@ void write_coverage_json(std::ostream& out, const CoveragePlan& plan, const Resu
     const CoverageStats& s = plan.stats;
     ordered_json doc = {
         {"format", "surfgrow-coverage"},
-        {"version", 1},
+        {"version", 2},
         {"units", meta.units},
         {"offset", vec_json(meta.offset)},
         {"input", meta.input},
@@ -56,7 +82,8 @@ void write_coverage_json(std::ostream& out, const CoveragePlan& plan, const Resu
           {"transition_length", s.transition_length},
           {"goal_path_length", s.goal_path_length}}},
     };
-    // The head indented, then one line per plane and per goal (there may be 100 000 goals).
+    doc["goals_file"] = kCoverageGoalsFile;
+    // The head indented, then one line per plane.
     std::string text = doc.dump(1);
     text.pop_back();  // the closing brace
     while (!text.empty() && text.back() == '\n') text.pop_back();
@@ -71,49 +98,53 @@ void write_coverage_json(std::ostream& out, const CoveragePlan& plan, const Resu
         text += k ? ",\n  " : "\n  ";
         text += row.dump();
     }
-    text += plan.per_plane.empty() ? "],\n \"goals\": [" : "\n ],\n \"goals\": [";
-    OutputBuffer buf(out);
-    buf.append(text);
-    auto put_vec = [&](const Vec3d& v) {
-        buf.put('[');
-        for (int a = 0; a < 3; ++a) {
-            if (a) buf.put(',');
-            buf.put_number(v[a]);
-        }
-        buf.put(']');
+    text += plan.per_plane.empty() ? "]\n}\n" : "\n ]\n}\n";
+    out << text;
+}
+
+void write_coverage_ply(std::ostream& out, const CoveragePlan& plan, const ResultMeta& meta) {
+    const bool wide = meta.offset != Vec3d::Zero();  // keep georeferenced precision
+    const char* pos = wide ? "double" : "float";
+    std::string head = cat({"ply\nformat binary_little_endian 1.0\n",
+                            "comment surfgrow coverage goals: one vertex per goal in path order\n",
+                            "comment units ", meta.units, "\ncomment result_id ", meta.result_id,
+                            "\nelement vertex ", std::to_string(plan.goals.size()), "\n",
+                            "property ", pos, " x\nproperty ", pos, " y\nproperty ", pos, " z\n"});
+    for (const char* p : kGoalProperties) head += cat({"property ", goal_property(p, wide), "\n"});
+    head += "end_header\n";
+    std::string body(plan.goals.size() * goal_bytes(wide), '\0');
+    char* at = body.data();
+    auto put = [&at](auto v) {
+        std::memcpy(at, &v, sizeof v);
+        at += sizeof v;
     };
-    for (std::size_t k = 0; k < plan.goals.size(); ++k) {
-        const CoverageGoal& g = plan.goals[k];
-        buf.append(k ? ",\n  {\"seq\":" : "\n  {\"seq\":");
-        buf.put_number(k);
-        buf.append(",\"plane\":");
-        buf.put_number(g.plane);
-        buf.append(",\"row\":");
-        buf.put_number(g.row);
-        buf.append(",\"position\":");
-        put_vec(g.position + meta.offset);
-        buf.append(",\"normal\":");
-        put_vec(g.normal);
-        buf.append(",\"direction\":");
-        put_vec(g.direction);
-        buf.append(",\"tool_position\":");
-        put_vec(g.tool_position + meta.offset);
-        buf.append(",\"tool_axis\":");
-        put_vec(g.tool_axis);
-        buf.append(",\"orientation\":[");
-        const Eigen::Quaterniond& q = g.orientation;
-        const double wxyz[4] = {q.w(), q.x(), q.y(), q.z()};
-        for (int a = 0; a < 4; ++a) {
-            if (a) buf.put(',');
-            buf.put_number(wxyz[a]);
+    auto put_position = [&](const Vec3d& v) {
+        for (int a = 0; a < 3; ++a) {
+            if (wide)
+                put(v[a]);
+            else
+                put(static_cast<float>(v[a]));
         }
-        buf.append("],\"tilt_deg\":");
-        buf.put_number(g.tilt_deg);
-        buf.append(g.from_home ? ",\"from_home\":true" : ",\"from_home\":false");
-        buf.append(g.transition ? ",\"transition\":true}" : ",\"transition\":false}");
+    };
+    auto put_floats = [&](const auto& v, int n) {
+        for (int a = 0; a < n; ++a) put(static_cast<float>(v[a]));
+    };
+    for (const CoverageGoal& g : plan.goals) {
+        put_position(g.position + meta.offset);
+        put_floats(g.normal, 3);
+        put_floats(g.direction, 3);
+        put_position(g.tool_position + meta.offset);
+        put_floats(g.tool_axis, 3);
+        const Eigen::Quaterniond& q = g.orientation;
+        put_floats(Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()), 4);
+        put(static_cast<float>(g.tilt_deg));
+        put(g.plane);
+        put(g.row);
+        put(static_cast<std::uint8_t>(g.transition));
+        put(static_cast<std::uint8_t>(g.from_home));
     }
-    buf.append(plan.goals.empty() ? "]\n}\n" : "\n ]\n}\n");
-    buf.flush();
+    assert(at == body.data() + body.size());
+    out << head << body;
 }
 
 void write_coverage_csv(std::ostream& out, const CoveragePlan& plan, const ResultMeta& meta) {
@@ -148,7 +179,107 @@ void write_coverage_csv(std::ostream& out, const CoveragePlan& plan, const Resul
 
 StoredCoverage read_coverage_json(const std::filesystem::path& file) {
     const FileBytes bytes = FileBytes::read(file);
-    return parse_coverage_json(bytes.view(), file.string());
+    StoredCoverage r = parse_coverage_json(bytes.view(), file.string());
+    if (r.goals_file.empty()) return r;  // version 1: goals inline
+    const std::filesystem::path goals_path = file.parent_path() / r.goals_file;
+    StoredGoals g = read_coverage_ply(goals_path, r.meta.offset);
+    if (g.goals.size() != r.plan.stats.goals)
+        malformed(goals_path,
+                  cat({"holds ", std::to_string(g.goals.size()), " goals but ",
+                       file.filename().string(), " says ", std::to_string(r.plan.stats.goals)}));
+    if (g.result_id != r.meta.result_id)
+        malformed(goals_path, cat({"belongs to another plan (result_id \"", g.result_id, "\", ",
+                                   file.filename().string(), " has \"", r.meta.result_id,
+                                   "\"): run `surfgrow coverage` again"}));
+    r.plan.goals = std::move(g.goals);
+    return r;
+}
+
+StoredGoals read_coverage_ply(const std::filesystem::path& file, const Vec3d& offset) {
+    const FileBytes bytes = FileBytes::read(file);
+    return parse_coverage_ply(bytes.view(), file.string(), offset);
+}
+
+StoredGoals parse_coverage_ply(std::string_view all, std::string_view source, const Vec3d& offset) {
+    const std::filesystem::path file(source);
+    const FixedPlyHeader h = read_fixed_ply_header(all, source);
+    const bool wide = h.layout.size() > 1 && h.layout[1] == "double x";
+    std::vector<std::string> expected = {"element vertex"};
+    for (const char* axis : {" x", " y", " z"})
+        expected.push_back(cat({wide ? "double" : "float", axis}));
+    for (const char* p : kGoalProperties) expected.push_back(goal_property(p, wide));
+    if (!h.binary_little_endian || h.layout != expected)
+        malformed(file,
+                  "not a surfgrow coverage goals file (expected the layout coverage.ply is "
+                  "written in)");
+    const std::uint64_t count = h.elements[0].second;
+    const std::size_t size = goal_bytes(wide);
+    const std::size_t body = h.body;
+    if (count > all.size() / size || all.size() - body != count * size)
+        malformed(file, cat({"truncated or too long: the header promises ", std::to_string(count),
+                             " goals"}));
+    StoredGoals r;
+    r.result_id = h.result_id;
+    const char* p = all.data() + body;
+    auto take = [&p](auto& v) {
+        std::memcpy(&v, p, sizeof v);
+        p += sizeof v;
+    };
+    auto position = [&] {
+        Vec3d v;
+        for (int a = 0; a < 3; ++a) {
+            if (wide) {
+                take(v[a]);
+            } else {
+                float x;
+                take(x);
+                v[a] = x;
+            }
+        }
+        return v;
+    };
+    auto floats = [&](int n) {
+        Eigen::Vector4d v = Eigen::Vector4d::Zero();
+        for (int a = 0; a < n; ++a) {
+            float x;
+            take(x);
+            v[a] = x;
+        }
+        return v;
+    };
+    // Stored as float: a unit vector comes back within float rounding of unit, and is made
+    // unit again.
+    auto unit = [&](const Eigen::Vector4d& v, int n, const char* what, std::size_t k) {
+        const double norm = v.head(n).norm();
+        if (!std::isfinite(norm) || std::abs(norm - 1.0) > 1e-5)
+            malformed(file,
+                      cat({"goal ", std::to_string(k), ": its ", what, " is not a unit vector"}));
+        return Eigen::Vector4d(v / norm);
+    };
+    r.goals.resize(static_cast<std::size_t>(count));
+    for (std::size_t k = 0; k < r.goals.size(); ++k) {
+        CoverageGoal& g = r.goals[k];
+        g.position = position() - offset;
+        g.normal = unit(floats(3), 3, "normal", k).head<3>();
+        g.direction = unit(floats(3), 3, "direction", k).head<3>();
+        g.tool_position = position() - offset;
+        g.tool_axis = unit(floats(3), 3, "tool axis", k).head<3>();
+        const Eigen::Vector4d q = unit(floats(4), 4, "orientation", k);
+        g.orientation = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
+        float tilt;
+        take(tilt);
+        g.tilt_deg = tilt;
+        take(g.plane);
+        take(g.row);
+        std::uint8_t transition, from_home;
+        take(transition);
+        take(from_home);
+        g.transition = transition != 0;
+        g.from_home = from_home != 0;
+        if (!g.position.allFinite() || !g.tool_position.allFinite() || !std::isfinite(g.tilt_deg))
+            malformed(file, cat({"goal ", std::to_string(k), " is not finite"}));
+    }
+    return r;
 }
 
 StoredCoverage parse_coverage_json(std::string_view text, std::string_view source) {
@@ -160,7 +291,9 @@ StoredCoverage parse_coverage_json(std::string_view text, std::string_view sourc
     try {
         if (!j.is_object() || j.value("format", "") != "surfgrow-coverage")
             malformed(file, "not a surfgrow coverage file (no \"format\": \"surfgrow-coverage\")");
-        if (integer_at<int>(j, "version") != 1) malformed(file, "only version 1 is supported");
+        const int version = integer_at<int>(j, "version");
+        if (version != 1 && version != 2)
+            malformed(file, "only versions 1 and 2 are supported (a newer surfgrow wrote it?)");
         r.meta.units = string_of(j.at("units"), "units");
         r.meta.offset = vec_of(j.at("offset"), "offset");
         r.meta.input = j.contains("input") ? string_of(j.at("input"), "input") : std::string();
@@ -196,6 +329,13 @@ StoredCoverage parse_coverage_json(std::string_view text, std::string_view sourc
                 {integer_at<std::uint32_t>(jp, "plane"), integer_at<std::uint32_t>(jp, "goals"),
                  integer_at<std::uint32_t>(jp, "first_goal"), jp.at("area").get<double>(),
                  jp.at("covered_fraction").get<double>()});
+        if (version == 2) {  // the goals are in the file it names, beside it
+            r.goals_file = string_of(j.at("goals_file"), "goals_file");
+            if (r.goals_file.empty() || r.goals_file == "." || r.goals_file == ".." ||
+                r.goals_file.find_first_of("/\\") != std::string::npos)
+                throw std::invalid_argument("goals_file is not the name of a file beside it");
+            return r;
+        }
         const json& goals = j.at("goals");
         if (!goals.is_array() || goals.size() != st.goals)
             throw std::invalid_argument(cat({"the summary says ", std::to_string(st.goals),

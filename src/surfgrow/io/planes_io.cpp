@@ -11,6 +11,7 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/file_bytes.hpp"
+#include "surfgrow/io/fixed_ply_header.hpp"
 #include "surfgrow/io/json_fields.hpp"
 #include "surfgrow/io/output_buffer.hpp"
 
@@ -315,47 +316,19 @@ PlaneMesh read_planes_ply(const std::filesystem::path& file, const Vec3d& offset
 
 PlaneMesh parse_planes_ply(std::string_view all, std::string_view source, const Vec3d& offset) {
     const std::filesystem::path file(source);
-    const std::size_t end = all.find("end_header\n");
-    if (all.substr(0, 4) != "ply\n" || end == std::string_view::npos)
-        malformed(file, "not a PLY file (no \"ply\" line or no end_header)");
-    std::istringstream head{std::string(all.substr(0, end))};
-    std::string line;
-    std::vector<std::string> props;
-    std::size_t vertices = 0, faces = 0;
-    bool wide = false, little = false;
-    while (std::getline(head, line)) {
-        std::istringstream ls(line);
-        std::string word;
-        ls >> word;
-        if (word == "format") {
-            std::string enc;
-            ls >> enc;
-            little = enc == "binary_little_endian";
-        } else if (word == "element") {
-            std::string name;
-            std::size_t count = 0;
-            ls >> name >> count;
-            (name == "vertex" ? vertices : faces) = count;
-            props.push_back(cat({"element ", name}));
-        } else if (word == "property") {
-            std::string rest;
-            std::getline(ls, rest);
-            props.push_back(rest);
-            if (rest == " double x") wide = true;
-        }
-    }
-    const std::string t = wide ? " double" : " float";
-    const std::vector<std::string> expected = {"element vertex", t + " x",
-                                               t + " y",         t + " z",
-                                               " float nx",      " float ny",
-                                               " float nz",      " int plane",
-                                               "element face",   " list uchar uint vertex_indices",
-                                               " int plane"};
-    if (!little || props != expected)
+    const FixedPlyHeader h = read_fixed_ply_header(all, source);
+    const bool wide = h.layout.size() > 1 && h.layout[1] == "double x";
+    const std::string t = wide ? "double" : "float";
+    const std::vector<std::string> expected = {
+        "element vertex", t + " x",   t + " y",    t + " z",       "float nx",
+        "float ny",       "float nz", "int plane", "element face", "list uchar uint vertex_indices",
+        "int plane"};
+    if (!h.binary_little_endian || h.layout != expected)
         malformed(file,
                   "not a surfgrow planes mesh (expected the layout planes.ply is written in)");
+    const std::uint64_t vertices = h.elements[0].second, faces = h.elements[1].second;
     const std::size_t vsize = (wide ? 24 : 12) + 16, fsize = 1 + 12 + 4;
-    const std::size_t body = end + std::strlen("end_header\n");
+    const std::size_t body = h.body;
     if (vertices > all.size() / vsize || faces > all.size() / fsize ||
         all.size() - body != vertices * vsize + faces * fsize)
         malformed(file,

@@ -19,23 +19,15 @@
 namespace surfgrow::io {
 
 bool is_result_file(std::string_view file_name) {
-    static constexpr std::string_view kNames[] = {"surfaces.ply",
-                                                  "surfaces.json",
-                                                  "labels.txt",
-                                                  "surfaces.csv",
-                                                  "planes.json",
-                                                  "planes.ply",
-                                                  "planes.obj",
-                                                  "coverage.json",
-                                                  "coverage.csv",
-                                                  "occupancy.ply",
-                                                  "occupancy.json",
-                                                  "environment.bt",
-                                                  "collision_spheres.json",
-                                                  "surfaces.png",
-                                                  "corner.png",
-                                                  "run.json",
-                                                  "eval.json",
+    static constexpr std::string_view kNames[] = {"surfaces.ply",   "surfaces.json",
+                                                  "labels.txt",     "surfaces.csv",
+                                                  "planes.json",    "planes.ply",
+                                                  "planes.obj",     "coverage.json",
+                                                  "coverage.ply",   "coverage.csv",
+                                                  "occupancy.ply",  "occupancy.json",
+                                                  "environment.bt", "collision_spheres.json",
+                                                  "surfaces.png",   "corner.png",
+                                                  "run.json",       "eval.json",
                                                   "collision.json"};
     for (const std::string_view n : kNames)
         if (n == file_name) return true;
@@ -114,7 +106,7 @@ OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,
     if (files.csv)
         tx.add("surfaces.csv", [&](std::ostream& o) { write_surfaces_csv(o, r.surfaces, meta); });
     if (result.planes) stage_planes(tx, *result.planes, meta, files.planes_obj);
-    if (result.coverage) stage_coverage(tx, *result.coverage, meta);
+    if (result.coverage) stage_coverage(tx, *result.coverage, meta, files.coverage_csv);
     OccupancySummary occupancy;
     if (result.occupancy && (files.occupancy || files.octomap)) {
         OccupancyOutputs which;
@@ -137,12 +129,18 @@ void stage_planes(OutputTransaction& tx, const BoundPlanes& planes, const Result
     else
         tx.drop("planes.obj");
     // Planned or evaluated from the old planes: stale unless staged again.
-    for (const char* stale : {"coverage.json", "coverage.csv", "eval.json"}) tx.drop(stale);
+    for (const char* stale : {"coverage.json", "coverage.ply", "coverage.csv", "eval.json"})
+        tx.drop(stale);
 }
 
-void stage_coverage(OutputTransaction& tx, const CoveragePlan& plan, const ResultMeta& meta) {
+void stage_coverage(OutputTransaction& tx, const CoveragePlan& plan, const ResultMeta& meta,
+                    bool csv) {
     tx.add("coverage.json", [&](std::ostream& o) { write_coverage_json(o, plan, meta); });
-    tx.add("coverage.csv", [&](std::ostream& o) { write_coverage_csv(o, plan, meta); });
+    tx.add(kCoverageGoalsFile, [&](std::ostream& o) { write_coverage_ply(o, plan, meta); });
+    if (csv)
+        tx.add("coverage.csv", [&](std::ostream& o) { write_coverage_csv(o, plan, meta); });
+    else
+        tx.drop("coverage.csv");
 }
 
 OccupancySummary stage_occupancy(OutputTransaction& tx, const OccupancyGrid& grid,

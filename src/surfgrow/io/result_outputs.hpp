@@ -23,11 +23,12 @@ namespace surfgrow::io {
 /// Which files to write besides surfaces.ply and surfaces.json. The robot outputs' files are
 /// written when the result holds them.
 struct ResultFiles {
-    bool labels = true;       ///< labels.txt
-    bool csv = false;         ///< surfaces.csv
-    bool planes_obj = false;  ///< planes.obj besides planes.json and planes.ply
-    bool occupancy = true;    ///< occupancy.ply and occupancy.json
-    bool octomap = true;      ///< environment.bt (free space carved from the scan origins)
+    bool labels = true;         ///< labels.txt
+    bool csv = false;           ///< surfaces.csv
+    bool planes_obj = false;    ///< planes.obj besides planes.json and planes.ply
+    bool coverage_csv = false;  ///< coverage.csv besides coverage.json and coverage.ply
+    bool occupancy = true;      ///< occupancy.ply and occupancy.json
+    bool octomap = true;        ///< environment.bt (free space carved from the scan origins)
 };
 
 struct OccupancyOutputs {
@@ -62,8 +63,9 @@ OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,
 void stage_planes(OutputTransaction& tx, const BoundPlanes& planes, const ResultMeta& meta,
                   bool obj);
 
-/// Stages coverage.json and coverage.csv.
-void stage_coverage(OutputTransaction& tx, const CoveragePlan& plan, const ResultMeta& meta);
+/// Stages coverage.json, coverage.ply and, with `csv`, coverage.csv (else drops an old one).
+void stage_coverage(OutputTransaction& tx, const CoveragePlan& plan, const ResultMeta& meta,
+                    bool csv = false);
 
 /// Stages occupancy.ply, environment.bt and occupancy.json for `grid`, the occupancy grid of
 /// (cloud, config) (see occupancy_io.hpp and octomap_export.hpp). The OctoMap's rays are cast to

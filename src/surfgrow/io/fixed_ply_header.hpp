@@ -1,0 +1,29 @@
+// The header of a PLY file surfgrow writes in one fixed binary layout (planes.ply, coverage.ply),
+// read back by their own strict readers; clouds of any layout go through ply_reader instead.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace surfgrow::io {
+
+struct FixedPlyHeader {
+    bool binary_little_endian = false;
+    /// "element NAME" and each property's "TYPE NAME" (or "list ..."), in file order: the
+    /// caller compares it with the layout it writes.
+    std::vector<std::string> layout;
+    /// Each element's name and count, in file order (a count that does not parse is 0).
+    std::vector<std::pair<std::string, std::uint64_t>> elements;
+    std::string result_id;  ///< from a "comment result_id ID" line; empty without one
+    std::size_t body = 0;   ///< offset of the first byte after "end_header\n"
+};
+
+/// Reads the header of `bytes`. Throws Error(kMalformedInput) naming `source` when there is no
+/// "ply" line or no end_header.
+[[nodiscard]] FixedPlyHeader read_fixed_ply_header(std::string_view bytes, std::string_view source);
+
+}  // namespace surfgrow::io
