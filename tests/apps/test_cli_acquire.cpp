@@ -236,11 +236,17 @@ TEST(CliMap, ScansArrivingInAFolderAreMappedAsTheyCome) {
     EXPECT_NE(watched.out.find("joined the map"), std::string::npos) << watched.out;
 
     // The same scans given at once: the same map, byte for byte.
-    CliRun r = surfgrow(cat({"map ", q(scans), " -q --no-picture -o ", q(tmp / "given")}));
+    CliRun r =
+        surfgrow(cat({"map ", q(scans), " -q --no-picture --coverage-csv -o ", q(tmp / "given")}));
     ASSERT_EQ(r.code, 0) << r.out;
-    for (const char* file : {"surfaces.json", "labels.txt", "planes.json", "coverage.json"})
+    for (const char* file :
+         {"surfaces.json", "labels.txt", "planes.json", "coverage.json", "coverage.ply"}) {
+        EXPECT_TRUE(fs::exists(tmp / "live" / file)) << file;
         EXPECT_TRUE(test::read_bytes(tmp / "live" / file) == test::read_bytes(tmp / "given" / file))
             << file;
+    }
+    EXPECT_FALSE(fs::exists(tmp / "live" / "coverage.csv"));  // the text goals only on request
+    EXPECT_TRUE(fs::exists(tmp / "given" / "coverage.csv"));
     // And scored like any result, against the fused cloud of the same scans.
     r = surfgrow(cat({"scan2cloud ", q(scans), " -q -o ", q(scans / "cloud.ply")}));
     ASSERT_EQ(r.code, 0) << r.out;
@@ -264,9 +270,9 @@ TEST(CliDemo, EmulatedScansMappedOneByOneGiveTheDemosFolder) {
     const CliRun r = surfgrow(cat({"demo --emulate --poses 2 -q -o ", q(tmp / "demo")}));
     ASSERT_EQ(r.code, 0) << r.out;
     for (const char* file :
-         {"surfaces.ply", "surfaces.json", "planes.json", "coverage.json", "occupancy.ply",
-          "environment.bt", "surfaces.png", "corner.png", "eval.json", "scan/scan-000.sgraw",
-          "scan/scan-001.sgraw", "scan/scene.json"})
+         {"surfaces.ply", "surfaces.json", "planes.json", "coverage.json", "coverage.ply",
+          "occupancy.ply", "environment.bt", "surfaces.png", "corner.png", "eval.json",
+          "scan/scan-000.sgraw", "scan/scan-001.sgraw", "scan/scene.json"})
         EXPECT_TRUE(fs::exists(tmp / "demo" / file)) << file;
     const auto m = nlohmann::json::parse(test::read_bytes(tmp / "demo" / "eval.json"))["metrics"];
     EXPECT_GE(m["registered_planar"].get<double>(), 0.99);
