@@ -258,11 +258,13 @@ void add_threads_option(CLI::App& cmd, int& threads, const std::string& descript
                 int n = 0;
                 const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
                 const int most = max_threads();
-                const bool too_many =
-                    ec == std::errc::result_out_of_range ||
-                    (ec == std::errc() && end == text.data() + text.size() && n > most);
+                // Only a whole number counts: "99999999999x" is left to CLI11, which refuses it
+                // (found by fuzz/cli_args: it was clamped like a number beyond int).
+                const bool whole = end == text.data() + text.size();
+                const bool too_many = whole && (ec == std::errc::result_out_of_range ||
+                                                (ec == std::errc() && n > most));
                 // Negative counts are refused here, once for every command (0 = all cores).
-                if (text.starts_with('-') &&
+                if (text.starts_with('-') && whole &&
                     ((ec == std::errc() && n < 0) || ec == std::errc::result_out_of_range))
                     throw Error(ErrorCode::kInvalidParameter,
                                 cat({"--threads must be 0 (all cores) or more, got ", text}));

@@ -109,6 +109,13 @@ TEST_F(CliArguments, ThreadsAreClampedWithOneNoteForEveryCommand) {
                         kInvalid,
                         {"--threads must be 0 (all cores) or more, got -1"}});
     }
+    // Only whole numbers: digits beyond int followed by text are a usage error, not clamped
+    // (found by fuzz/cli_args).
+    for (const char* n : {"322222222222go2", "2147483648x", "-99999999999x", "4x"}) {
+        const CliRun r = surfgrow(cat({grow(), " --threads ", n}));
+        EXPECT_EQ(r.code, kUsage) << n << "\n" << r.out;
+        EXPECT_EQ(r.out.find("more than this machine can use"), std::string::npos) << r.out;
+    }
 }
 
 // Lengths a float cloud cannot express: beyond 3.4e38, below 1.2e-38, beyond a double, NaN, Inf.
