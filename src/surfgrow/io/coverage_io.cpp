@@ -8,6 +8,8 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
@@ -32,23 +34,28 @@ Eigen::Quaterniond quaternion_of(double w, double x, double y, double z) {
 static_assert(std::endian::native == std::endian::little,
               "coverage.ply is written and read on little-endian hosts only");
 
-// coverage.ply's vertex properties after x, y, z (whose type depends on the offset).
-constexpr const char* kGoalProperties[] = {
-    "float nx",       "float ny",       "float nz",   "float dx", "float dy",
-    "float dz",       "X tool_x",       "X tool_y",   "X tool_z", "float axis_x",
-    "float axis_y",   "float axis_z",   "float qw",   "float qx", "float qy",
-    "float qz",       "float tilt_deg", "uint plane", "uint row", "uchar transition",
-    "uchar from_home"};
-
-// Bytes of one goal: 2 positions of 3 coordinates, 14 floats, 2 uints, 2 uchars.
-std::size_t goal_bytes(bool wide) {
-    return 6 * (wide ? 8 : 4) + 14 * 4 + 2 * 4 + 2;
+// coverage.ply's vertex properties, "TYPE NAME" in file order: the writer's header and what
+// the reader expects. Positions in double when `wide` (georeferenced).
+std::vector<std::string> goal_layout(bool wide) {
+    const std::string pos = wide ? "double " : "float ";
+    std::vector<std::string> layout;
+    for (const char* name : {"x", "y", "z"}) layout.push_back(pos + name);
+    for (const char* name : {"nx", "ny", "nz", "dx", "dy", "dz"})
+        layout.push_back(cat({"float ", name}));
+    for (const char* name : {"tool_x", "tool_y", "tool_z"}) layout.push_back(pos + name);
+    for (const char* name : {"axis_x", "axis_y", "axis_z", "qw", "qx", "qy", "qz", "tilt_deg"})
+        layout.push_back(cat({"float ", name}));
+    for (const char* p : {"uint plane", "uint row", "uchar transition", "uchar from_home"})
+        layout.emplace_back(p);
+    return layout;
 }
 
-std::string goal_property(const char* p, bool wide) {
-    std::string s(p);
-    if (s[0] == 'X') s.replace(0, 1, wide ? "double" : "float");
-    return s;
+// Bytes of one goal: the sizes of the layout's types.
+std::size_t goal_bytes(const std::vector<std::string>& layout) {
+    std::size_t bytes = 0;
+    for (const std::string& p : layout)
+        bytes += p.starts_with("double ") ? 8 : p.starts_with("uchar ") ? 1 : 4;
+    return bytes;
 }
 
 }  // namespace
@@ -104,15 +111,14 @@ void write_coverage_json(std::ostream& out, const CoveragePlan& plan, const Resu
 
 void write_coverage_ply(std::ostream& out, const CoveragePlan& plan, const ResultMeta& meta) {
     const bool wide = meta.offset != Vec3d::Zero();  // keep georeferenced precision
-    const char* pos = wide ? "double" : "float";
+    const std::vector<std::string> layout = goal_layout(wide);
     std::string head = cat({"ply\nformat binary_little_endian 1.0\n",
                             "comment surfgrow coverage goals: one vertex per goal in path order\n",
                             "comment units ", meta.units, "\ncomment result_id ", meta.result_id,
-                            "\nelement vertex ", std::to_string(plan.goals.size()), "\n",
-                            "property ", pos, " x\nproperty ", pos, " y\nproperty ", pos, " z\n"});
-    for (const char* p : kGoalProperties) head += cat({"property ", goal_property(p, wide), "\n"});
+                            "\nelement vertex ", std::to_string(plan.goals.size()), "\n"});
+    for (const std::string& p : layout) head += cat({"property ", p, "\n"});
     head += "end_header\n";
-    std::string body(plan.goals.size() * goal_bytes(wide), '\0');
+    std::string body(plan.goals.size() * goal_bytes(layout), '\0');
     char* at = body.data();
     auto put = [&at](auto v) {
         std::memcpy(at, &v, sizeof v);
@@ -203,17 +209,16 @@ StoredGoals read_coverage_ply(const std::filesystem::path& file, const Vec3d& of
 StoredGoals parse_coverage_ply(std::string_view all, std::string_view source, const Vec3d& offset) {
     const std::filesystem::path file(source);
     const FixedPlyHeader h = read_fixed_ply_header(all, source);
-    const bool wide = h.layout.size() > 1 && h.layout[1] == "double x";
+    const bool wide = h.positions_in_double();
+    const std::vector<std::string> layout = goal_layout(wide);
     std::vector<std::string> expected = {"element vertex"};
-    for (const char* axis : {" x", " y", " z"})
-        expected.push_back(cat({wide ? "double" : "float", axis}));
-    for (const char* p : kGoalProperties) expected.push_back(goal_property(p, wide));
+    expected.insert(expected.end(), layout.begin(), layout.end());
     if (!h.binary_little_endian || h.layout != expected)
         malformed(file,
                   "not a surfgrow coverage goals file (expected the layout coverage.ply is "
                   "written in)");
     const std::uint64_t count = h.elements[0].second;
-    const std::size_t size = goal_bytes(wide);
+    const std::size_t size = goal_bytes(layout);
     const std::size_t body = h.body;
     if (count > all.size() / size || all.size() - body != count * size)
         malformed(file, cat({"truncated or too long: the header promises ", std::to_string(count),

@@ -20,6 +20,12 @@ struct FixedPlyHeader {
     std::vector<std::pair<std::string, std::uint64_t>> elements;
     std::string result_id;  ///< from a "comment result_id ID" line; empty without one
     std::size_t body = 0;   ///< offset of the first byte after "end_header\n"
+
+    /// Whether the first element's first property is "double x": surfgrow writes positions in
+    /// double for a georeferenced cloud, in float otherwise.
+    [[nodiscard]] bool positions_in_double() const {
+        return layout.size() > 1 && layout[1] == "double x";
+    }
 };
 
 /// Reads the header of `bytes`. Throws Error(kMalformedInput) naming `source` when there is no

@@ -317,7 +317,7 @@ PlaneMesh read_planes_ply(const std::filesystem::path& file, const Vec3d& offset
 PlaneMesh parse_planes_ply(std::string_view all, std::string_view source, const Vec3d& offset) {
     const std::filesystem::path file(source);
     const FixedPlyHeader h = read_fixed_ply_header(all, source);
-    const bool wide = h.layout.size() > 1 && h.layout[1] == "double x";
+    const bool wide = h.positions_in_double();
     const std::string t = wide ? "double" : "float";
     const std::vector<std::string> expected = {
         "element vertex", t + " x",   t + " y",    t + " z",       "float nx",
