@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Whether two result folders hold the same result up to float rounding: labels.txt byte for byte,
-and in surfaces.json, planes.json and coverage.json (and the goals of coverage.ply) the same
+and in surfaces.json, planes.json and coverage.json (and the records of surfaces.ply and coverage.ply) the same
 structure, every string and integer equal (but result_id, a hash of the exact bytes) and every real
 number within a relative tolerance (of the larger magnitude, floored at 1e-3).
 Used where bytes cannot match: builds for another CPU architecture (scripts/check-aarch64.sh).
@@ -15,7 +15,8 @@ PLY_TYPES = {"float": "f", "double": "d", "uint": "I", "int": "i", "uchar": "B"}
 
 
 def ply_rows(path):
-    """The vertices of a binary little-endian PLY with one element (coverage.ply), as lists."""
+    """The vertices of a binary little-endian PLY with one element (surfaces.ply, coverage.ply),
+    as lists."""
     data = path.read_bytes()
     end = data.index(b"end_header\n") + len(b"end_header\n")
     fmt = "<" + "".join(PLY_TYPES[line.split()[1]] for line in data[:end].decode().splitlines()
@@ -61,11 +62,12 @@ def main():
     if (args.a / "labels.txt").read_bytes() != (args.b / "labels.txt").read_bytes():
         print("same-result: labels.txt differs", file=sys.stderr)
         ok = False
-    for name in ("surfaces.json", "planes.json", "coverage.json", "coverage.ply"):
+    for name in (
+            "surfaces.json", "surfaces.ply", "planes.json", "coverage.json", "coverage.ply"):
         out = []
         if name.endswith(".ply"):
             if not (args.a / name).exists() and not (args.b / name).exists():
-                continue  # a result folder written before the goals were binary
+                continue  # older folders: surfaces and goals inline in the JSON
             differences(ply_rows(args.a / name), ply_rows(args.b / name), name, out)
         else:
             differences(json.loads((args.a / name).read_text()),

@@ -49,7 +49,8 @@ void add_grow_command(CLI::App& app) {
     robot->add_flag("!--no-occupancy", args->outputs.files.occupancy,
                     "Do not write occupancy.ply/occupancy.json");
     robot->add_flag("!--no-octomap", args->outputs.files.octomap, "Do not write environment.bt");
-    robot->add_flag("!--no-collision", args->collision, "Do not write collision_spheres.json");
+    robot->add_flag("!--no-collision", args->collision,
+                    "Do not write collision_spheres.json and collision_spheres.ply");
     args->planes.add_to(*cmd->add_option_group("Bound planes (planes.json, planes.ply)"));
     args->coverage.add_to(*cmd->add_option_group("Coverage (coverage.json, coverage.ply)"));
     cmd->callback([args] {

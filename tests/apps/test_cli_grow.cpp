@@ -65,10 +65,10 @@ TEST_F(CliGrow, WritesEveryOutputAndTheSummaryLine) {
     EXPECT_NE(r.out.find(std::to_string(cloud_.size()) + " points -> "), std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find("% registered"), std::string::npos) << r.out;
-    for (const char* f :
-         {"surfaces.ply", "surfaces.json", "surfaces.csv", "labels.txt", "run.json", "surfaces.png",
-          "planes.json", "planes.ply", "coverage.json", "coverage.ply", "coverage.csv",
-          "occupancy.ply", "occupancy.json", "environment.bt", "collision_spheres.json"})
+    for (const char* f : {"surfaces.ply", "surfaces.json", "surfaces.csv", "labels.txt", "run.json",
+                          "surfaces.png", "planes.json", "planes.ply", "coverage.json",
+                          "coverage.ply", "coverage.csv", "occupancy.ply", "occupancy.json",
+                          "environment.bt", "collision_spheres.json", "collision_spheres.ply"})
         EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / f)) << f;
     // The goals open as a plain PLY cloud with normals (what Open3D and CloudCompare see).
     const PointCloud goals = io::read_cloud(dir_ / "out" / "coverage.ply");
@@ -112,7 +112,7 @@ TEST_F(CliGrow, ByteIdenticalOutputsForAnyThreadCount) {
     for (const char* f :
          {"surfaces.ply", "surfaces.json", "labels.txt", "surfaces.png", "planes.json",
           "planes.ply", "coverage.json", "coverage.ply", "occupancy.ply", "occupancy.json",
-          "environment.bt", "collision_spheres.json"}) {
+          "environment.bt", "collision_spheres.json", "collision_spheres.ply"}) {
         const std::string ref = test::read_bytes(dir_ / "t1" / f);
         EXPECT_FALSE(ref.empty()) << f;
         EXPECT_EQ(test::read_bytes(dir_ / "t2" / f), ref) << f;
@@ -130,7 +130,7 @@ TEST_F(CliGrow, RobotOutputsMatchTheirSubcommands) {
                   .code,
               0);
     for (const char* f : {"planes.json", "coverage.json", "occupancy.json", "environment.bt",
-                          "collision_spheres.json"})
+                          "collision_spheres.json", "collision_spheres.ply"})
         EXPECT_FALSE(fs::exists(sub / f)) << f;
     const std::string c = cat({" --cloud ", q(input_), " -q"});
     ASSERT_EQ(surfgrow(cat({"planes ", q(sub), c})).code, 0);
@@ -293,8 +293,10 @@ TEST_F(CliGrow, FilesOfAnotherResultAreRefused) {
         const auto j = nlohmann::json::parse(test::read_bytes(a / file));
         EXPECT_EQ(j.at("result_id"), ra.meta.result_id) << file;
     }
-    EXPECT_NE(test::read_bytes(a / "surfaces.ply").find("comment result_id " + ra.meta.result_id),
-              std::string::npos);
+    for (const char* file : {"surfaces.ply", "coverage.ply", "collision_spheres.ply"})
+        EXPECT_NE(test::read_bytes(a / file).find("comment result_id " + ra.meta.result_id),
+                  std::string::npos)
+            << file;
 
     fs::copy_file(b / "planes.json", a / "planes.json", fs::copy_options::overwrite_existing);
     for (const std::string& cmd :
@@ -313,6 +315,16 @@ TEST_F(CliGrow, FilesOfAnotherResultAreRefused) {
     EXPECT_FALSE(fs::exists(a / "coverage.json"));
     EXPECT_FALSE(fs::exists(a / "coverage.ply"));
     EXPECT_EQ(surfgrow("coverage " + q(a) + " -q").code, 0);
+
+    // The surfaces of another run beside this surfaces.json: refused by every reader, by name.
+    fs::copy_file(b / "surfaces.ply", a / "surfaces.ply", fs::copy_options::overwrite_existing);
+    for (const std::string& cmd : {"coverage " + q(a), "planes " + q(a) + " --cloud " + q(input_),
+                                   "render " + q(a) + " -o " + q(dir_ / "p.png"),
+                                   "view " + q(a) + " -o " + q(dir_ / "v.html")}) {
+        const CliRun r = surfgrow(cmd);
+        EXPECT_EQ(r.code, static_cast<int>(ErrorCode::kMalformedInput)) << cmd << ": " << r.out;
+        EXPECT_NE(r.out.find("surfaces.ply"), std::string::npos) << cmd << ": " << r.out;
+    }
 }
 
 // One writer per folder: a second run is refused while the first holds it, naming the first.

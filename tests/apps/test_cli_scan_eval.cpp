@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "cli_support.hpp"
 #include "support/test_support.hpp"
@@ -235,16 +236,19 @@ TEST_F(CliScan, EvalCatchesATamperedResult) {
                             " --no-picture --mu-max 48mm"}))
                   .code,
               0);
-    // Rotate every normal by 20 degrees about z in surfaces.json.
-    auto j = read_json(out / "surfaces.json");
+    // Rotate every normal by 20 degrees about z in surfaces.ply.
+    io::StoredResult res = io::read_result_json(out / "surfaces.json");
+    ASSERT_FALSE(res.surfaces.empty());
     const double c = std::cos(20 * 3.14159265358979323846 / 180),
                  s = std::sin(20 * 3.14159265358979323846 / 180);
-    for (auto& surf : j.at("surfaces")) {
-        const double x = surf["normal"][0], y = surf["normal"][1];
-        surf["normal"][0] = c * x - s * y;
-        surf["normal"][1] = s * x + c * y;
+    for (Surface& surf : res.surfaces) {
+        const double x = surf.normal.x(), y = surf.normal.y();
+        surf.normal.x() = c * x - s * y;
+        surf.normal.y() = s * x + c * y;
     }
-    test::write_bytes(out / "surfaces.json", j.dump());
+    std::ostringstream ply;
+    io::write_surfaces_ply(ply, res.surfaces, res.meta);
+    test::write_bytes(out / "surfaces.ply", ply.str());
     const CliRun e = surfgrow(
         cat({"eval ", q(out), " --truth ", q(scan_dir()), " --require 'normal_median<=3'"}));
     EXPECT_EQ(e.code, kExitRequirementFailed) << e.out;

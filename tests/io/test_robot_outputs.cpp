@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -203,8 +204,31 @@ TEST(CollisionFiles, SpheresAndReport) {
     io::write_collision_spheres_json(s, env, meta);
     const Json j = Json::parse(s.str());
     EXPECT_EQ(j["count"], 2);
-    EXPECT_EQ(j["spheres"][1], Json::parse("[1, 0, 100, 0.024]"));
+    EXPECT_EQ(j["spheres_file"], "collision_spheres.ply");
     EXPECT_EQ(j["radius"]["max"], 0.024);
+    // The spheres in binary: positions in double here (an offset), the radius in float.
+    std::ostringstream ply;
+    io::write_collision_spheres_ply(ply, env, meta);
+    const std::string bytes = ply.str();
+    const std::size_t body = bytes.find("end_header\n") + 11;
+    ASSERT_EQ(bytes.size() - body, 2u * (3 * 8 + 4));
+    EXPECT_NE(bytes.find("property double x\nproperty double y\nproperty double z\n"
+                         "property float radius\n"),
+              std::string::npos);
+    double centre[3];
+    float radius = 0;
+    std::memcpy(centre, bytes.data() + body + 28, sizeof centre);
+    std::memcpy(&radius, bytes.data() + body + 28 + 24, sizeof radius);
+    EXPECT_EQ(Vec3d(centre[0], centre[1], centre[2]), Vec3d(1, 0, 100));
+    EXPECT_EQ(radius, 0.024f);
+    // Without an offset, float positions: a cloud the generic reader opens.
+    std::ostringstream plain;
+    io::write_collision_spheres_ply(plain, env, io::ResultMeta{});
+    const test::TempDir tmp;
+    test::write_bytes(tmp / "spheres.ply", plain.str());
+    const PointCloud centres = io::read_cloud(tmp / "spheres.ply");
+    ASSERT_EQ(centres.size(), 2u);
+    EXPECT_EQ(centres.points[1], Vec3f(1, 0, 0));
 
     RobotModel robot;
     robot.links.push_back({"base", RobotLink::Kind::kSphere, {{0, 0, 0.5}, {0, 0, 0.5}, 0.1}});
@@ -253,9 +277,10 @@ TEST(ResultOutputs, StagesEveryFileOfAPipelineResultTogether) {
         summary = io::stage_result(tx, cloud, config, r, meta);
         tx.commit();
     }
-    for (const char* f : {"surfaces.ply", "surfaces.json", "labels.txt", "planes.json",
-                          "planes.ply", "coverage.json", "coverage.ply", "occupancy.ply",
-                          "occupancy.json", "environment.bt", "collision_spheres.json"})
+    for (const char* f :
+         {"surfaces.ply", "surfaces.json", "labels.txt", "planes.json", "planes.ply",
+          "coverage.json", "coverage.ply", "occupancy.ply", "occupancy.json", "environment.bt",
+          "collision_spheres.json", "collision_spheres.ply"})
         EXPECT_TRUE(std::filesystem::is_regular_file(dir / f)) << f;
     for (const char* f : {"surfaces.csv", "planes.obj", "coverage.csv"})
         EXPECT_FALSE(std::filesystem::exists(dir / f)) << f;
@@ -295,7 +320,7 @@ TEST(ResultOutputs, FilesFollowTheChoiceAndTheStagesRun) {
                           "planes.ply", "planes.obj", "occupancy.ply", "occupancy.json"})
         EXPECT_TRUE(std::filesystem::is_regular_file(dir / f)) << f;
     for (const char* f : {"labels.txt", "coverage.json", "coverage.ply", "environment.bt",
-                          "collision_spheres.json"})
+                          "collision_spheres.json", "collision_spheres.ply"})
         EXPECT_FALSE(std::filesystem::exists(dir / f)) << f;
 }
 

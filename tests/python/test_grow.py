@@ -81,10 +81,18 @@ def test_same_as_cli(tmp_path, cli):
     r = surfgrow.grow(surfgrow.read_cloud(cloud_file), seed=3)
     labels = np.loadtxt(tmp_path / "out" / "labels.txt", dtype=np.int32)
     assert np.array_equal(r.labels, labels)
-    surfaces = json.loads((tmp_path / "out" / "surfaces.json").read_text())["surfaces"]
-    normals = np.array([s["normal"] for s in surfaces])
+    # surfaces.ply: a numpy record array straight from its header.
+    data = (tmp_path / "out" / "surfaces.ply").read_bytes()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    props = [line.split()[1:] for line in data[:end].decode().splitlines()
+             if line.startswith("property ")]
+    surfaces = np.frombuffer(data[end:], dtype=[(name, {"double": "<f8", "uint": "<u4"}[kind])
+                                                for kind, name in props])
+    assert json.loads((tmp_path / "out" / "surfaces.json").read_text())["surfaces_file"] == \
+        "surfaces.ply"
+    normals = np.stack([surfaces["nx"], surfaces["ny"], surfaces["nz"]], axis=1)
     assert np.array_equal(r.normals, normals)
-    homes = np.array([s["home"] for s in surfaces])
+    homes = np.stack([surfaces["x"], surfaces["y"], surfaces["z"]], axis=1)
     assert np.array_equal(r.homes, homes)
 
 

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <nlohmann/json.hpp>
-
-#include "surfgrow/io/output_buffer.hpp"
+#include <string>
 
 namespace surfgrow::io {
 
@@ -32,37 +32,51 @@ void write_collision_spheres_json(std::ostream& out, const CollisionSpheres& sph
             rmax = std::max(rmax, s.radius);
         }
     }
-    const Json head = {
+    const Json doc = {
         {"format", "surfgrow-collision-spheres"},
-        {"version", 1},
+        {"version", 2},
         {"units", meta.units},
         {"input", meta.input},
         {"result_id", meta.result_id},
         {"what",
          "one sphere per surface: centre at its home point, radius its neighbourhood "
-         "radius (paper 5.5); id = surface id; rows are [x, y, z, radius]"},
+         "radius (paper 5.5); id = surface id; the spheres are the vertices (x, y, z, radius) "
+         "of spheres_file"},
         {"count", spheres.size()},
         {"radius", {{"min", rmin}, {"max", rmax}}},
+        {"spheres_file", kCollisionSpheresFile},
     };
-    std::string text = head.dump(1);
-    text.pop_back();  // the closing brace: the spheres go in before it
-    while (!text.empty() && text.back() == '\n') text.pop_back();
-    OutputBuffer buf(out);
-    buf.append(text);
-    buf.append(",\n \"spheres\": [");
-    for (std::size_t i = 0; i < spheres.size(); ++i) {
-        const Sphere& s = spheres.spheres()[i];
+    out << doc.dump(1) << '\n';
+}
+
+void write_collision_spheres_ply(std::ostream& out, const CollisionSpheres& spheres,
+                                 const ResultMeta& meta) {
+    const bool wide = meta.offset != Vec3d::Zero();  // keep georeferenced precision
+    const std::string pos = wide ? "double" : "float";
+    std::string head =
+        "ply\nformat binary_little_endian 1.0\n"
+        "comment surfgrow collision spheres: one vertex per sphere at its centre\n";
+    head += "comment units " + meta.units + "\ncomment result_id " + meta.result_id + "\n";
+    head += "element vertex " + std::to_string(spheres.size()) + "\n";
+    for (const char* axis : {"x", "y", "z"}) head += "property " + pos + " " + axis + "\n";
+    head += "property float radius\nend_header\n";
+    std::string body(spheres.size() * (wide ? 28 : 16), '\0');
+    char* at = body.data();
+    auto put = [&at](auto v) {
+        std::memcpy(at, &v, sizeof v);  // little-endian hosts (results_io.cpp checks)
+        at += sizeof v;
+    };
+    for (const Sphere& s : spheres.spheres()) {
         const Vec3d c = s.centre + meta.offset;
-        buf.append(i ? ",\n  [" : "\n  [");
         for (int a = 0; a < 3; ++a) {
-            buf.put_number(c[a]);
-            buf.put(',');
+            if (wide)
+                put(c[a]);
+            else
+                put(static_cast<float>(c[a]));
         }
-        buf.put_number(s.radius);
-        buf.put(']');
+        put(static_cast<float>(s.radius));
     }
-    buf.append(spheres.empty() ? "]\n}\n" : "\n ]\n}\n");
-    buf.flush();
+    out << head << body;
 }
 
 void write_collision_report_json(std::ostream& out, const CollisionSpheres& spheres,

@@ -1,4 +1,4 @@
-// collision_spheres.json (the environment for other tools) and the collision report.
+// collision_spheres.json and .ply (the environment for other tools) and the collision report.
 #pragma once
 
 #include <ostream>
@@ -11,10 +11,19 @@
 
 namespace surfgrow::io {
 
-/// collision_spheres.json: every environment sphere as [x, y, z, radius] (file coordinates), in
-/// sphere id = surface id order, with units and the radius range. Deterministic.
+/// Where collision_spheres.json (version 2) says its spheres are, beside it.
+inline constexpr const char* kCollisionSpheresFile = "collision_spheres.ply";
+
+/// collision_spheres.json (version 2): units, count and radius range of the environment's
+/// spheres; the spheres themselves are in collision_spheres.ply ("spheres_file"). Deterministic.
 void write_collision_spheres_json(std::ostream& out, const CollisionSpheres& spheres,
                                   const ResultMeta& meta);
+
+/// collision_spheres.ply: one vertex per sphere, sphere id = surface id order, binary
+/// little-endian: x, y, z (the centre, file coordinates), radius. Float, positions in double when
+/// meta.offset is non-zero (georeferenced); result_id in a comment.
+void write_collision_spheres_ply(std::ostream& out, const CollisionSpheres& spheres,
+                                 const ResultMeta& meta);
 
 /// What a collision check was asked.
 struct CollisionRequest {

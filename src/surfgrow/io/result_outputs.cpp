@@ -19,15 +19,25 @@
 namespace surfgrow::io {
 
 bool is_result_file(std::string_view file_name) {
-    static constexpr std::string_view kNames[] = {"surfaces.ply",   "surfaces.json",
-                                                  "labels.txt",     "surfaces.csv",
-                                                  "planes.json",    "planes.ply",
-                                                  "planes.obj",     "coverage.json",
-                                                  "coverage.ply",   "coverage.csv",
-                                                  "occupancy.ply",  "occupancy.json",
-                                                  "environment.bt", "collision_spheres.json",
-                                                  "surfaces.png",   "corner.png",
-                                                  "run.json",       "eval.json",
+    static constexpr std::string_view kNames[] = {"surfaces.ply",
+                                                  "surfaces.json",
+                                                  "labels.txt",
+                                                  "surfaces.csv",
+                                                  "planes.json",
+                                                  "planes.ply",
+                                                  "planes.obj",
+                                                  "coverage.json",
+                                                  "coverage.ply",
+                                                  "coverage.csv",
+                                                  "occupancy.ply",
+                                                  "occupancy.json",
+                                                  "environment.bt",
+                                                  "collision_spheres.json",
+                                                  "collision_spheres.ply",
+                                                  "surfaces.png",
+                                                  "corner.png",
+                                                  "run.json",
+                                                  "eval.json",
                                                   "collision.json"};
     for (const std::string_view n : kNames)
         if (n == file_name) return true;
@@ -153,6 +163,8 @@ void stage_collision(OutputTransaction& tx, const CollisionSpheres& spheres,
                      const ResultMeta& meta) {
     tx.add("collision_spheres.json",
            [&](std::ostream& o) { write_collision_spheres_json(o, spheres, meta); });
+    tx.add(kCollisionSpheresFile,
+           [&](std::ostream& o) { write_collision_spheres_ply(o, spheres, meta); });
 }
 
 }  // namespace surfgrow::io

@@ -52,7 +52,7 @@ struct OccupancySummary {
 
 /// Stages the files of `result`, computed over `cloud` by a Pipeline with `config`: surfaces.ply,
 /// surfaces.json and, as `files` and the result have them, labels.txt, surfaces.csv, planes.*,
-/// coverage.*, occupancy.*, environment.bt, collision_spheres.json. Returns what the occupancy
+/// coverage.*, occupancy.*, environment.bt, collision_spheres.*. Returns what the occupancy
 /// outputs found (zero when there is no grid).
 OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,
                               const PipelineConfig& config, const PipelineResult& result,
@@ -76,7 +76,7 @@ OccupancySummary stage_occupancy(OutputTransaction& tx, const OccupancyGrid& gri
                                  const CloudView& cloud, const GrowerConfig& config,
                                  const ResultMeta& meta, const OccupancyOutputs& which = {});
 
-/// Stages collision_spheres.json.
+/// Stages collision_spheres.json and collision_spheres.ply.
 void stage_collision(OutputTransaction& tx, const CollisionSpheres& spheres,
                      const ResultMeta& meta);
 

@@ -1,6 +1,7 @@
 #include "surfgrow/io/results_io.hpp"
 
 #include <bit>
+#include <cassert>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -12,6 +13,7 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/io/file_bytes.hpp"
+#include "surfgrow/io/fixed_ply_header.hpp"
 #include "surfgrow/io/json_fields.hpp"
 #include "surfgrow/io/scan_files_common.hpp"
 
@@ -30,22 +32,6 @@ void put_number(std::string& out, double v) {
     char buf[32];
     const auto r = std::to_chars(buf, buf + sizeof buf, v);
     out.append(buf, r.ptr);
-}
-
-void put_vec(std::string& out, const Vec3d& v) {
-    out += '[';
-    for (int a = 0; a < 3; ++a) {
-        if (a) out += ',';
-        put_number(out, v[a]);
-    }
-    out += ']';
-}
-
-template <class T>
-void put_raw(std::ostream& out, T value) {
-    char bytes[sizeof(T)];
-    std::memcpy(bytes, &value, sizeof(T));  // little-endian hosts only (checked below)
-    out.write(bytes, sizeof(T));
 }
 
 static_assert(std::endian::native == std::endian::little,
@@ -202,96 +188,85 @@ const char* orientation_name(OrientationSource source) {
     return "up";
 }
 
+namespace {
+
+// surfaces.ply's vertex properties, "TYPE NAME" in file order: the writer's header and what the
+// reader expects. Every number in double: a command reading the folder back (planes, coverage,
+// occupancy, eval) must see the surfaces exactly as grown.
+std::vector<std::string> surface_layout() {
+    std::vector<std::string> layout;
+    auto doubles = [&](std::initializer_list<const char*> names) {
+        for (const char* name : names) layout.push_back(cat({"double ", name}));
+    };
+    doubles({"x", "y", "z", "nx", "ny", "nz", "radius", "plane_offset"});
+    layout.emplace_back("uint point_count");
+    doubles({"mean_residual", "cx", "cy", "cz", "lambda_min", "lambda_mid", "lambda_max"});
+    layout.emplace_back("uint neighbours");
+    doubles({"tolerance", "min_x", "min_y", "min_z", "max_x", "max_y", "max_z"});
+    return layout;
+}
+
+// Bytes of one surface: the sizes of the layout's types.
+std::size_t surface_bytes(const std::vector<std::string>& layout) {
+    std::size_t bytes = 0;
+    for (const std::string& p : layout) bytes += p.starts_with("double ") ? 8 : 4;
+    return bytes;
+}
+
+}  // namespace
+
 void write_surfaces_ply(std::ostream& out, std::span<const Surface> surfaces,
                         const ResultMeta& meta) {
-    const bool wide = meta.offset != Vec3d::Zero();  // keep georeferenced precision
-    const char* pos = wide ? "double" : "float";
-    out << "ply\nformat binary_little_endian 1.0\n"
-        << "comment surfgrow surfaces: one vertex per surface at its home point, with its normal\n"
-        << "comment units " << meta.units << "\n"
-        << "comment result_id " << meta.result_id << "\n"
-        << "element vertex " << surfaces.size() << "\n"
-        << "property " << pos << " x\nproperty " << pos << " y\nproperty " << pos << " z\n"
-        << "property float nx\nproperty float ny\nproperty float nz\n"
-        << "property float radius\nproperty double plane_offset\n"
-        << "property uint point_count\nproperty float mean_residual\nend_header\n";
+    const std::vector<std::string> layout = surface_layout();
+    std::string head = cat({"ply\nformat binary_little_endian 1.0\n",
+                            "comment surfgrow surfaces: one vertex per surface at its home point, "
+                            "with its normal\n",
+                            "comment units ", meta.units, "\ncomment result_id ", meta.result_id,
+                            "\nelement vertex ", std::to_string(surfaces.size()), "\n"});
+    for (const std::string& p : layout) head += cat({"property ", p, "\n"});
+    head += "end_header\n";
+    std::string body(surfaces.size() * surface_bytes(layout), '\0');
+    char* at = body.data();
+    auto put = [&at](auto v) {
+        std::memcpy(at, &v, sizeof v);  // little-endian hosts only (checked above)
+        at += sizeof v;
+    };
+    auto put_vec3 = [&](const Vec3d& v) {
+        for (int a = 0; a < 3; ++a) put(v[a]);
+    };
     for (const Surface& s : surfaces) {
         const Vec3d home = s.home + meta.offset;
-        for (int a = 0; a < 3; ++a) {
-            if (wide)
-                put_raw(out, home[a]);
-            else
-                put_raw(out, static_cast<float>(home[a]));
-        }
-        for (int a = 0; a < 3; ++a) put_raw(out, static_cast<float>(s.normal[a]));
-        put_raw(out, static_cast<float>(s.radius));
-        put_raw(out, -s.normal.dot(s.centroid + meta.offset));
-        put_raw(out, s.point_count);
-        put_raw(out, static_cast<float>(s.mean_residual));
+        put_vec3(home);
+        put_vec3(s.normal);
+        put(s.radius);
+        put(-s.normal.dot(s.centroid + meta.offset));
+        put(s.point_count);
+        put(s.mean_residual);
+        put_vec3(s.centroid + meta.offset);
+        put_vec3(s.eigenvalues);
+        put(s.neighbours);
+        put(s.tolerance);
+        put_vec3(s.bounds.empty() ? home : Vec3d(s.bounds.min + meta.offset));
+        put_vec3(s.bounds.empty() ? home : Vec3d(s.bounds.max + meta.offset));
     }
+    assert(at == body.data() + body.size());
+    out << head << body;
 }
 
 void write_result_json(std::ostream& out, const GrowResult& result, const GrowerConfig& config,
                        const ResultMeta& meta) {
-    const nlohmann::json head = {
+    const nlohmann::json doc = {
         {"format", "surfgrow-result"},
-        {"version", 1},
+        {"version", 2},
         {"units", meta.units},
         {"offset", {meta.offset.x(), meta.offset.y(), meta.offset.z()}},
         {"input", meta.input},
         {"result_id", meta.result_id},
         {"parameters", parameters_json(config)},
         {"summary", summary_json(result.stats)},
+        {"surfaces_file", kSurfacesFile},
     };
-    // The head through nlohmann, the (possibly 100 000) surfaces streamed by hand.
-    std::string text = head.dump(1);
-    text.pop_back();  // the closing brace; the surfaces array goes in before it
-    while (!text.empty() && text.back() == '\n') text.pop_back();
-    text += ",\n \"surfaces\": [";
-    std::string row;
-    for (std::size_t k = 0; k < result.surfaces.size(); ++k) {
-        const Surface& s = result.surfaces[k];
-        const Vec3d home = s.home + meta.offset, centroid = s.centroid + meta.offset;
-        row.clear();
-        row += k ? ",\n  {\"id\":" : "\n  {\"id\":";
-        row += std::to_string(k);
-        row += ",\"plane\":[";
-        for (int a = 0; a < 3; ++a) {
-            put_number(row, s.normal[a]);
-            row += ',';
-        }
-        put_number(row, -s.normal.dot(centroid));
-        row += "],\"normal\":";
-        put_vec(row, s.normal);
-        row += ",\"home\":";
-        put_vec(row, home);
-        row += ",\"centroid\":";
-        put_vec(row, centroid);
-        row += ",\"eigenvalues\":";
-        put_vec(row, s.eigenvalues);
-        row += ",\"radius\":";
-        put_number(row, s.radius);
-        row += ",\"neighbours\":";
-        row += std::to_string(s.neighbours);
-        row += ",\"points\":";
-        row += std::to_string(s.point_count);
-        row += ",\"mean_residual\":";
-        put_number(row, s.mean_residual);
-        row += ",\"tolerance\":";
-        put_number(row, s.tolerance);
-        row += ",\"bounds\":{\"min\":";
-        put_vec(row, s.bounds.empty() ? home : Vec3d(s.bounds.min + meta.offset));
-        row += ",\"max\":";
-        put_vec(row, s.bounds.empty() ? home : Vec3d(s.bounds.max + meta.offset));
-        row += "}}";
-        text += row;
-        if (text.size() > (1u << 20)) {
-            out << text;
-            text.clear();
-        }
-    }
-    text += result.surfaces.empty() ? "]\n}\n" : "\n ]\n}\n";
-    out << text;
+    out << doc.dump(1) << '\n';
 }
 
 void write_surfaces_csv(std::ostream& out, std::span<const Surface> surfaces,
@@ -347,7 +322,83 @@ StoredResult read_result_json(const std::filesystem::path& file) {
         throw Error(ErrorCode::kCannotOpen,
                     cat({"cannot open ", file.string(), " (is this a surfgrow result?)"}));
     const FileBytes bytes = FileBytes::read(file);
-    return parse_result_json(bytes.view(), file.string());
+    StoredResult r = parse_result_json(bytes.view(), file.string());
+    if (r.surfaces_file.empty()) return r;  // version 1: surfaces inline
+    const std::filesystem::path surfaces_path = file.parent_path() / r.surfaces_file;
+    StoredSurfaces s = read_surfaces_ply(surfaces_path, r.meta.offset);
+    if (s.surfaces.size() != r.stats.surfaces)
+        malformed(surfaces_path,
+                  cat({"holds ", std::to_string(s.surfaces.size()), " surfaces but ",
+                       file.filename().string(), " says ", std::to_string(r.stats.surfaces)}));
+    if (s.result_id != r.meta.result_id)
+        malformed(surfaces_path,
+                  cat({"belongs to another result (result_id \"", s.result_id, "\", ",
+                       file.filename().string(), " has \"", r.meta.result_id,
+                       "\"): the folder is a mix of two runs; run `surfgrow grow` again"}));
+    r.surfaces = std::move(s.surfaces);
+    return r;
+}
+
+StoredSurfaces read_surfaces_ply(const std::filesystem::path& file, const Vec3d& offset) {
+    const FileBytes bytes = FileBytes::read(file);
+    return parse_surfaces_ply(bytes.view(), file.string(), offset);
+}
+
+StoredSurfaces parse_surfaces_ply(std::string_view all, std::string_view source,
+                                  const Vec3d& offset) {
+    const std::filesystem::path file(source);
+    const FixedPlyHeader h = read_fixed_ply_header(all, source);
+    const std::vector<std::string> layout = surface_layout();
+    std::vector<std::string> expected = {"element vertex"};
+    expected.insert(expected.end(), layout.begin(), layout.end());
+    if (!h.binary_little_endian || h.layout != expected)
+        malformed(file,
+                  "not a surfgrow surfaces file (expected the layout surfaces.ply is written in; "
+                  "folders written before version 2 keep their surfaces in surfaces.json)");
+    const std::uint64_t count = h.elements[0].second;
+    const std::size_t size = surface_bytes(layout);
+    if (count > all.size() / size || all.size() - h.body != count * size)
+        malformed(file, cat({"truncated or too long: the header promises ", std::to_string(count),
+                             " surfaces"}));
+    StoredSurfaces r;
+    r.result_id = h.result_id;
+    const char* p = all.data() + h.body;
+    auto take = [&p](auto& v) {
+        std::memcpy(&v, p, sizeof v);
+        p += sizeof v;
+    };
+    auto vec3 = [&] {
+        Vec3d v;
+        for (int a = 0; a < 3; ++a) take(v[a]);
+        return v;
+    };
+    r.surfaces.resize(static_cast<std::size_t>(count));
+    for (std::size_t k = 0; k < r.surfaces.size(); ++k) {
+        Surface& s = r.surfaces[k];
+        s.home = vec3() - offset;
+        s.normal = vec3();
+        take(s.radius);
+        double plane_offset;  // derived from normal and centroid; read past
+        take(plane_offset);
+        take(s.point_count);
+        take(s.mean_residual);
+        s.centroid = vec3() - offset;
+        s.eigenvalues = vec3();
+        take(s.neighbours);
+        take(s.tolerance);
+        const Vec3d lo = vec3() - offset, hi = vec3() - offset;
+        s.bounds.add(lo);
+        s.bounds.add(hi);
+        const bool finite = s.home.allFinite() && s.normal.allFinite() && s.centroid.allFinite() &&
+                            s.eigenvalues.allFinite() && std::isfinite(s.radius) &&
+                            std::isfinite(s.mean_residual) && std::isfinite(s.tolerance) &&
+                            lo.allFinite() && hi.allFinite();
+        if (!finite) malformed(file, cat({"surface ", std::to_string(k), " is not finite"}));
+        if (std::abs(s.normal.norm() - 1.0) > 1e-6)
+            malformed(file,
+                      cat({"surface ", std::to_string(k), ": its normal is not a unit vector"}));
+    }
+    return r;
 }
 
 StoredResult parse_result_json(std::string_view text, std::string_view source) {
@@ -410,6 +461,15 @@ StoredResult parse_result_json(std::string_view text, std::string_view source) {
                 known = true;
             }
         if (!known) malformed(file, cat({"summary.orientation is unknown ('", orientation, "')"}));
+        if (j.contains("surfaces_file")) {  // version 2: the surfaces are in their own file
+            const auto& f = j.at("surfaces_file");
+            if (!f.is_string()) throw std::invalid_argument("surfaces_file is not a file name");
+            r.surfaces_file = f.get<std::string>();
+            if (r.surfaces_file.empty() || r.surfaces_file == "." || r.surfaces_file == ".." ||
+                r.surfaces_file.find_first_of("/\\") != std::string::npos)
+                throw std::invalid_argument("surfaces_file is not the name of a file beside it");
+            return r;
+        }
         for (const auto& js : j.at("surfaces")) {
             Surface surf;
             surf.normal = vec_of(js.at("normal"));

@@ -31,16 +31,21 @@ struct ResultMeta {
 [[nodiscard]] std::string result_id(const GrowResult& result, const GrowerConfig& config,
                                     const ResultMeta& meta);
 
-/// surfaces.ply: one vertex per surface at its home point with its unit normal (nx, ny, nz), so
-/// Open3D, PCL and CloudCompare open it as a point cloud with normals; extra properties radius,
-/// plane_offset (d in n.x + d = 0), point_count and mean_residual. Binary little-endian; positions
-/// in double when the cloud had an offset (georeferenced), float otherwise.
+/// Where surfaces.json (version 2) says its surfaces are, beside it.
+inline constexpr const char* kSurfacesFile = "surfaces.ply";
+
+/// surfaces.ply: every surface, one vertex each, binary little-endian, so Open3D, PCL and
+/// CloudCompare open it as a point cloud with normals and numpy reads it as one record array:
+/// x, y, z (the home point), nx, ny, nz (unit normal), radius, plane_offset (d in n.x + d = 0),
+/// point_count, mean_residual, cx, cy, cz (centroid), lambda_min, lambda_mid, lambda_max
+/// (eigenvalues), neighbours, tolerance, min_x .. max_z (the members' bounds). All in double, so
+/// a command reading the folder back sees exactly what was grown; result_id in a comment.
 void write_surfaces_ply(std::ostream& out, std::span<const Surface> surfaces,
                         const ResultMeta& meta);
 
-/// surfaces.json: parameters, the summary statistics, and every surface (plane, normal, home
-/// point, centroid, eigenvalues, radius, bounds, members). Deterministic: no timings, no thread
-/// count, numbers in shortest round-trip form.
+/// surfaces.json (version 2): parameters and the summary statistics; the surfaces themselves
+/// are in surfaces.ply ("surfaces_file"). Deterministic: no timings, no thread count, numbers
+/// in shortest round-trip form.
 void write_result_json(std::ostream& out, const GrowResult& result, const GrowerConfig& config,
                        const ResultMeta& meta);
 
@@ -58,13 +63,32 @@ struct StoredResult {
     /// The parameters used (lengths in the cloud's units), workspace (viewpoint, crop) included.
     GrowerConfig config;
     ResultMeta meta;
+    /// Version 2: the file beside surfaces.json holding the surfaces (filled in by
+    /// read_result_json, left empty by parse_result_json). Empty for version 1 (surfaces inline).
+    std::string surfaces_file;
 };
 
-/// Reads surfaces.json. Throws Error(kCannotOpen) if missing, Error(kMalformedInput) if it is not
-/// a surfgrow result.
+/// Reads surfaces.json, and for version 2 its surfaces from the surfaces.ply beside it, which
+/// must hold as many surfaces as the summary says and carry the same result_id. Throws
+/// Error(kCannotOpen) if missing, Error(kMalformedInput) if it is not a surfgrow result.
 [[nodiscard]] StoredResult read_result_json(const std::filesystem::path& file);
-/// The same for surfaces.json held in memory; `source` names it in messages.
+/// The same for surfaces.json held in memory, without reading any other file; `source` names it
+/// in messages.
 [[nodiscard]] StoredResult parse_result_json(std::string_view text, std::string_view source);
+
+/// Surfaces read back from surfaces.ply, positions relative to `offset`, and its result_id.
+struct StoredSurfaces {
+    std::vector<Surface> surfaces;
+    std::string result_id;
+};
+/// Reads surfaces.ply as write_surfaces_ply writes it. Throws Error(kCannotOpen) or
+/// Error(kMalformedInput) naming the file and the problem (another layout, truncated, a value
+/// that is not finite, a normal that is not a unit vector).
+[[nodiscard]] StoredSurfaces read_surfaces_ply(const std::filesystem::path& file,
+                                               const Vec3d& offset = Vec3d::Zero());
+/// The same for surfaces.ply held in memory; `source` names it in messages.
+[[nodiscard]] StoredSurfaces parse_surfaces_ply(std::string_view bytes, std::string_view source,
+                                                const Vec3d& offset = Vec3d::Zero());
 
 /// Reads labels.txt. Throws Error(kCannotOpen / kMalformedInput).
 [[nodiscard]] std::vector<std::int32_t> read_labels_txt(const std::filesystem::path& file);
