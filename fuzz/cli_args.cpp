@@ -74,8 +74,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     } catch (const surfgrow::Error&) {
     }
 
-    for (std::size_t i = 1; i < args.size(); ++i) {
-        const std::string_view a = args[i];
+    // The last argument also goes through the value parsers. One is enough (the mutations reach
+    // every argument in turn); every argument took five exceptions each, most of the time.
+    if (args.size() > 1) {
+        const std::string_view a = args.back();
         expect_error_or_value([&] { return parse_length_m(a, "--fuzz"); });
         expect_error_or_value([&] { return unit_to_metres(a, "--fuzz"); });
         expect_error_or_value([&] { return parse_vec3(a, "--fuzz"); });
