@@ -1,0 +1,189 @@
+#include "surfgrow/core/detail/neighbourhood_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace surfgrow::detail {
+
+namespace {
+
+// The normals of a neighbourhood's two halves may differ by at most this (degrees).
+constexpr double kSplitAngleDeg = 20.0;
+// A neighbourhood that fails eq. (2) is given a larger ball only while its thickness is that of
+// the noise (at most this many sigmas): noise-limited far surfaces, not edges or steps.
+constexpr double kGrowSigmas = 1.5;
+
+/// The disk test's last look at an accepted neighbourhood, in one pass over its inliers (the
+/// points within its tolerance of its plane). Whether its two halves, split across each in-plane
+/// principal axis at the centroid, lie in one plane: an edge or a depth edge's mixed pixels seen
+/// at a small scale can look as thin as noise (an L of two short arms fitted by its diagonal), but
+/// its halves are the two arms. Halves that are lines or hold fewer than 3 points say nothing.
+/// Where they agree, the plane is refitted on the inliers, so that the few points of a
+/// neighbouring face an edge patch holds no longer tilt it.
+bool check_and_refit(const GrowContext& ctx, std::uint32_t home, const Vec3f& h,
+                     Neighbourhood& nb) {
+    const Vec3d& n = nb.fit.normal;
+    const Vec3d e1 = eigenvector_of(covariance(nb.moments), nb.fit.eigenvalues[1], n);
+    const Vec3d u = (e1 - e1.dot(n) * n).normalized();
+    const Vec3d v = n.cross(u);
+    const Vec3d& c = nb.fit.centroid;
+    const FrameSums f = gather_frame_sums(ctx.index, nb.runs, h, static_cast<float>(nb.radius),
+                                          c.cast<float>(), u.cast<float>(), v.cast<float>(),
+                                          n.cast<float>(), static_cast<float>(nb.tolerance));
+    // The noise variance along the normal: measured, or the neighbourhood's own.
+    const double noise_var = ctx.noise.known()
+                                 ? std::pow(ctx.noise.sigma(std::max(nb.range, 0.0)), 2)
+                                 : nb.fit.eigenvalues[0];
+    // Each half's plane as a regression of r on (u, v): a 2x2 solve from its sums.
+    for (int a = 0; a < 2; ++a) {
+        Vec3d half_normal[2];
+        double wander = 0;
+        bool usable = true;
+        for (int k = 0; k < 2 && usable; ++k) {
+            const double sign = k == 0 ? 1.0 : -1.0;
+            double m[9];  // 1, u, v, r, uu, uv, ur, vv, vr of this half
+            for (int t = 0; t < 9; ++t) m[t] = 0.5 * (f.all[t] + sign * f.signed_by[a][t]);
+            const double cnt = m[0];
+            if (cnt < 3) {
+                usable = false;
+                break;
+            }
+            const double mu_ = m[1] / cnt, mv = m[2] / cnt, mr = m[3] / cnt;
+            const double cuu = m[4] / cnt - mu_ * mu_, cuv = m[5] / cnt - mu_ * mv;
+            const double cur = m[6] / cnt - mu_ * mr, cvv = m[7] / cnt - mv * mv;
+            const double cvr = m[8] / cnt - mv * mr;
+            const double det = cuu * cvv - cuv * cuv;
+            if (!(det > 1e-12 * cuu * cvv) || !(std::min(cuu, cvv) > 0)) {
+                usable = false;  // a line: its tilt across itself is undefined
+                break;
+            }
+            const double gu = (cvv * cur - cuv * cvr) / det;
+            const double gv = (cuu * cvr - cuv * cur) / det;
+            half_normal[k] = (n - gu * u - gv * v).normalized();
+            // A half's normal wanders by about sigma / sqrt(n * spread) radians.
+            wander += noise_var * std::max(cuu, cvv) / (cnt * det);
+        }
+        if (!usable) continue;
+        // The limit: kSplitAngleDeg, or three wanders combined, whichever is larger.
+        const double limit = std::max(kSplitAngleDeg * M_PI / 180.0, 3 * std::sqrt(wander));
+        if (limit >= M_PI / 2) continue;
+        if (std::abs(half_normal[0].dot(half_normal[1])) < std::cos(limit)) return false;
+    }
+    // The inliers' moments about home, from their sums in the plane's frame.
+    const double cnt = f.all[0];
+    if (cnt >= ctx.config.min_pts) {
+        Mat3d r;
+        r.col(0) = u;
+        r.col(1) = v;
+        r.col(2) = n;
+        const Vec3d sq(f.all[1], f.all[2], f.all[3]);
+        Mat3d qq;
+        qq << f.all[4], f.all[5], f.all[6], f.all[5], f.all[7], f.all[8], f.all[6], f.all[8],
+            f.all[9];
+        Moments inliers;
+        inliers.n = cnt;
+        const Vec3d rs = r * sq;
+        inliers.sum = cnt * c + rs;
+        inliers.sum_sq = cnt * c * c.transpose() + c * rs.transpose() + rs * c.transpose() +
+                         r * qq * r.transpose();
+        // The refit must pass the same test (it reports these eigenvalues).
+        const PlaneFit refit = fit_plane(inliers);
+        if (judge_plane(ctx.config.plane_test, ctx.config.disk_test(), refit.eigenvalues,
+                        refit.normal, nb.radius,
+                        ctx.sight.named ? ctx.sight.towards(home, h) : Vec3d::Zero()) ==
+            PlaneVerdict::kPlane) {
+            nb.fit = refit;
+            nb.moments = inliers;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+/// The registration tolerance of an accepted neighbourhood: the user's, per mu of radius; or a few
+/// sigmas of the noise measured at its range (its own thickness while the noise is measured),
+/// never less than the coordinates' rounding needs, never more than the radius.
+double tolerance_of(const GrowContext& ctx, const Neighbourhood& nb) {
+    const GrowerConfig& cfg = ctx.config;
+    if (cfg.tolerance() > 0) return cfg.tolerance() * nb.radius / cfg.mu;
+    const double sigma = ctx.noise.known() ? ctx.noise.sigma(std::max(nb.range, 0.0))
+                                           : std::sqrt(nb.fit.eigenvalues[0]);
+    return std::clamp(cfg.noise_sigmas * sigma, cfg.mu / 6, nb.radius);
+}
+
+/// Fits the neighbourhood of sorted point `home` in cube `cube`, whose 27 cubes are `runs27`.
+/// kPaper: eq. (2) at mu, or at the adaptive radius if mu holds fewer than min_pts points. kDisk:
+/// the radius doubles while the neighbourhood fails the relative tests (too few points, eq. (2),
+/// spread, grazing), and the search stops at once where the neighbourhood is thicker than
+/// `thickness_sigmas` noise sigmas at its range (an edge, a step, a corner: growing cannot help).
+/// Without a known noise profile that limit is not applied (the profile's own sampling).
+Neighbourhood fit_neighbourhood(const GrowContext& ctx, std::uint32_t home, const Vec3f& h,
+                                std::uint32_t cube, std::span<const Range> runs27,
+                                std::vector<Range>& wide_runs) {
+    const CubeIndex& index = ctx.index;
+    const GrowerConfig& cfg = ctx.config;
+    const bool disk = cfg.plane_test == PlaneTest::kDisk;
+    const Vec3d towards = ctx.sight.towards(home, h);
+    const Vec3d sight = disk && ctx.sight.named ? towards : Vec3d::Zero();  // for the grazing test
+    Neighbourhood nb;
+    nb.range = ctx.sight.origins.empty() ? -1.0 : towards.norm();
+    // Thickness limits: to be a plane at all, and to be worth a larger ball after failing
+    // eq. (2) (noise thins out as the ball grows; an edge or a step does not).
+    double max_var = std::numeric_limits<double>::infinity(), grow_var = max_var;
+    if (disk && ctx.noise.known()) {
+        const double sigma = ctx.noise.sigma(std::max(nb.range, 0.0));
+        max_var = cfg.thickness_sigmas * cfg.thickness_sigmas * sigma * sigma;
+        grow_var = kGrowSigmas * kGrowSigmas * sigma * sigma;
+    }
+    const DiskTest test = cfg.disk_test();
+    nb.radius = cfg.mu;
+    nb.runs = runs27;
+    nb.moments = gather_moments(index, nb.runs, h, static_cast<float>(cfg.mu));
+    for (;;) {
+        const Moments& m = nb.moments;
+        if (m.n >= cfg.min_pts) {
+            // Most edge and clutter neighbourhoods fail eq. (2) plainly: the cubic's eigenvalues
+            // say so at a third of the full solve's cost.
+            const Vec3d rough = rough_eigenvalues(covariance(m));
+            if (clearly_not_planar(rough, cfg.alpha)) {
+                nb.verdict = PlaneVerdict::kThick;
+                // Only a full disk as thick as the noise thins out in a larger ball; a thicker
+                // one is an edge or a step, a partial one a boundary or a corner.
+                if (!disk || rough[0] > grow_var ||
+                    rough[1] < cfg.min_spread * disk_variance(nb.radius))
+                    return nb;
+            } else {
+                nb.fit = fit_plane(m);
+                nb.verdict = judge_plane(cfg.plane_test, test, nb.fit.eigenvalues, nb.fit.normal,
+                                         nb.radius, sight);
+                if (nb.fit.eigenvalues[0] > max_var) {
+                    nb.verdict = PlaneVerdict::kThick;
+                    return nb;
+                }
+                if (nb.verdict == PlaneVerdict::kPlane) {
+                    nb.tolerance = tolerance_of(ctx, nb);
+                    if (disk && !check_and_refit(ctx, home, h, nb))
+                        nb.verdict = PlaneVerdict::kKinked;
+                }
+                if (nb.verdict == PlaneVerdict::kPlane || nb.verdict == PlaneVerdict::kKinked)
+                    return nb;
+                if (nb.verdict == PlaneVerdict::kThick && nb.fit.eigenvalues[0] > grow_var)
+                    return nb;
+            }
+            // The paper's test keeps the radius of any neighbourhood with min_pts points.
+            if (!disk) return nb;
+        }
+        if (nb.radius >= cfg.max_radius()) return nb;
+        // Adaptive radius: double it while the support is too thin, up to the maximum.
+        nb.radius = std::min(2.0 * nb.radius, cfg.max_radius());
+        wide_runs.clear();
+        index.column_ranges(index.cube_coords(cube),
+                            static_cast<int>(std::ceil(nb.radius / index.cube_size())), wide_runs);
+        nb.runs = wide_runs;
+        nb.moments = gather_moments(index, nb.runs, h, static_cast<float>(nb.radius));
+    }
+}
+
+}  // namespace surfgrow::detail
