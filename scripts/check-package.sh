@@ -49,7 +49,7 @@ if [[ $(uname -m) == x86_64 ]]; then
     qemu-x86_64 -cpu Westmere "$cli" grow "$tmp/scan/cloud.ply" -o "$tmp/westmere" -q \
         --no-picture --no-octomap
     # The baseline and the widest SIMD path give the same bytes.
-    for f in surfaces.json surfaces.ply labels.txt planes.json coverage.json coverage.ply; do
+    for f in surfaces.json surfaces.ply labels.bin planes.json coverage.json coverage.ply; do
         cmp "$tmp/native/$f" "$tmp/westmere/$f"
     done
 fi
@@ -64,7 +64,7 @@ gcc_cli="$build/apps/surfgrow/surfgrow"
 for isa in baseline avx2 avx512; do
     SURFGROW_SIMD=$isa "$tmp/clang/apps/surfgrow/surfgrow" grow "$tmp/channel/cloud.ply" \
         -o "$tmp/clang-$isa" -q --no-picture --no-octomap
-    for f in surfaces.json surfaces.ply labels.txt planes.json coverage.json coverage.ply; do
+    for f in surfaces.json surfaces.ply labels.bin planes.json coverage.json coverage.ply; do
         cmp "$tmp/gcc/$f" "$tmp/clang-$isa/$f"
     done
 done

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Whether two result folders hold the same result up to float rounding: labels.txt byte for byte,
-and in surfaces.json, planes.json and coverage.json (and the records of surfaces.ply and coverage.ply) the same
-structure, every string and integer equal (but result_id, a hash of the exact bytes) and every real
+"""Whether two result folders hold the same result up to float rounding: labels.bin (labels.txt in
+older folders) byte for byte, and in surfaces.json, planes.json and coverage.json (and the records
+of surfaces.ply and coverage.ply) the same structure, every string and integer equal (but
+result_id, a hash of the exact bytes) and every real
 number within a relative tolerance (of the larger magnitude, floored at 1e-3).
 Used where bytes cannot match: builds for another CPU architecture (scripts/check-aarch64.sh).
 Usage: same-result.py A B [--tolerance 1e-3]"""
@@ -59,8 +60,9 @@ def main():
     ap.add_argument("--tolerance", type=float, default=1e-3)
     args = ap.parse_args()
     ok = True
-    if (args.a / "labels.txt").read_bytes() != (args.b / "labels.txt").read_bytes():
-        print("same-result: labels.txt differs", file=sys.stderr)
+    labels = "labels.bin" if (args.a / "labels.bin").exists() else "labels.txt"  # older folders
+    if (args.a / labels).read_bytes() != (args.b / labels).read_bytes():
+        print(f"same-result: {labels} differs", file=sys.stderr)
         ok = False
     for name in (
             "surfaces.json", "surfaces.ply", "planes.json", "coverage.json", "coverage.ply"):

@@ -35,7 +35,9 @@ void add_grow_command(CLI::App& app) {
     cmd->add_option("-o,--out", args->out, "Output folder (created; outputs replaced as a whole)")
         ->capture_default_str();
     args->grow.add_to(*cmd);
-    cmd->add_flag("!--no-labels", args->outputs.files.labels, "Do not write labels.txt");
+    cmd->add_flag("!--no-labels", args->outputs.files.labels, "Do not write labels.bin");
+    cmd->add_flag("--labels-txt", args->outputs.files.labels_txt,
+                  "Also write labels.txt (the labels as text, one per line)");
     cmd->add_flag("--csv", args->outputs.files.csv, "Also write surfaces.csv");
     cmd->add_flag("!--no-picture", args->outputs.picture, "Do not render surfaces.png");
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");

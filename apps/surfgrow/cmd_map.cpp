@@ -95,6 +95,8 @@ void add_map_command(CLI::App& app) {
         ->capture_default_str();
     args->grow.add_to(*cmd);
     cmd->add_flag("!--no-picture", args->outputs.picture, "Do not render surfaces.png");
+    cmd->add_flag("--labels-txt", args->outputs.files.labels_txt,
+                  "Also write labels.txt (the labels as text, one per line)");
     cmd->add_flag("-q,--quiet", args->quiet, "No line per scan on stdout");
     auto* robot = cmd->add_option_group("Robot outputs", "Refreshed after each scan");
     robot->add_flag("--no-planes", args->no_planes, "No planes (nor coverage)");

@@ -37,7 +37,7 @@ void add_occupancy_command(CLI::App& app) {
     };
     auto args = std::make_shared<Args>();
     cmd->add_option("result", args->dir,
-                    "Result folder of `surfgrow grow` (surfaces.json, labels.txt)")
+                    "Result folder of `surfgrow grow` (surfaces.json, labels.bin)")
         ->required();
     cmd->add_option("--cloud", args->cloud, "The cloud the result was grown from")->required();
     cmd->add_option("--viewpoint", args->viewpoint,

@@ -59,7 +59,7 @@ void add_cloud(view::ViewerScene& s, render::Scene& scene, const io::ResultFolde
     if (keep.size() < finite)
         s.notes.push_back(cat({"Cloud: showing ", grouped(keep.size()), " of ", grouped(finite),
                                " points, the same ones every time (--max-points)"}));
-    if (g.labels.empty()) s.notes.push_back("No labels.txt: every point is grey");
+    if (g.labels.empty()) s.notes.push_back("No labels (labels.bin): every point is grey");
 }
 
 void run_view(const ViewArgs& a) {

@@ -84,13 +84,13 @@ std::optional<std::vector<scanner::Face>> read_truth_faces_in(const fs::path& di
 eval::EvalReport evaluate_folder(const fs::path& result_dir, const Truth& truth,
                                  const eval::EvalOptions& options) {
     io::StoredResult result = io::read_result_folder(result_dir).result;
-    const std::vector<std::int32_t> labels = io::read_labels_txt(result_dir / "labels.txt");
+    const std::filesystem::path labels_path = io::labels_file(result_dir);
+    const std::vector<std::int32_t> labels = io::read_labels(labels_path);
     if (labels.size() != truth.cloud.size())
-        throw Error(
-            ErrorCode::kInvalidParameter,
-            cat({(result_dir / "labels.txt").string(), ": ", std::to_string(labels.size()),
-                 " labels, but ", truth.cloud_file.string(), " has ",
-                 std::to_string(truth.cloud.size()), " points: not a result of this scan"}));
+        throw Error(ErrorCode::kInvalidParameter,
+                    cat({labels_path.string(), ": ", std::to_string(labels.size()), " labels, but ",
+                         truth.cloud_file.string(), " has ", std::to_string(truth.cloud.size()),
+                         " points: not a result of this scan"}));
     // The result in metres, relative to the truth cloud's offset.
     const double scale = unit_to_metres(result.meta.units, "surfaces.json units");
     const Vec3d shift = result.meta.offset * scale - truth.cloud.offset;

@@ -42,7 +42,7 @@ struct Truth {
 /// no scene file). Throws Error(kCannotOpen) when they are missing, and the readers' errors.
 [[nodiscard]] Truth read_truth(const std::filesystem::path& dir);
 
-/// Evaluates the result in `result_dir` (surfaces.json, labels.txt) against `truth`, converting
+/// Evaluates the result in `result_dir` (surfaces.json, labels.bin) against `truth`, converting
 /// the result to metres. Throws Error(kInvalidParameter) when the result is not one of this
 /// cloud (a different point count).
 [[nodiscard]] eval::EvalReport evaluate_folder(const std::filesystem::path& result_dir,

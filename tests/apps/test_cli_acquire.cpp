@@ -240,7 +240,7 @@ TEST(CliMap, ScansArrivingInAFolderAreMappedAsTheyCome) {
         surfgrow(cat({"map ", q(scans), " -q --no-picture --coverage-csv -o ", q(tmp / "given")}));
     ASSERT_EQ(r.code, 0) << r.out;
     for (const char* file :
-         {"surfaces.json", "labels.txt", "planes.json", "coverage.json", "coverage.ply"}) {
+         {"surfaces.json", "labels.bin", "planes.json", "coverage.json", "coverage.ply"}) {
         EXPECT_TRUE(fs::exists(tmp / "live" / file)) << file;
         EXPECT_TRUE(test::read_bytes(tmp / "live" / file) == test::read_bytes(tmp / "given" / file))
             << file;

@@ -59,17 +59,20 @@ class CliGrow : public ::testing::Test {
 };
 
 TEST_F(CliGrow, WritesEveryOutputAndTheSummaryLine) {
-    const CliRun r =
-        surfgrow("grow " + q(input_) + " -o " + q(dir_ / "out") + " --csv --coverage-csv");
+    const CliRun r = surfgrow("grow " + q(input_) + " -o " + q(dir_ / "out") +
+                              " --csv --coverage-csv --labels-txt");
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_NE(r.out.find(std::to_string(cloud_.size()) + " points -> "), std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find("% registered"), std::string::npos) << r.out;
-    for (const char* f : {"surfaces.ply", "surfaces.json", "surfaces.csv", "labels.txt", "run.json",
-                          "surfaces.png", "planes.json", "planes.ply", "coverage.json",
-                          "coverage.ply", "coverage.csv", "occupancy.ply", "occupancy.json",
-                          "environment.bt", "collision_spheres.json", "collision_spheres.ply"})
+    for (const char* f :
+         {"surfaces.ply", "surfaces.json", "surfaces.csv", "labels.bin", "labels.txt", "run.json",
+          "surfaces.png", "planes.json", "planes.ply", "coverage.json", "coverage.ply",
+          "coverage.csv", "occupancy.ply", "occupancy.json", "environment.bt",
+          "collision_spheres.json", "collision_spheres.ply"})
         EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / f)) << f;
+    EXPECT_EQ(io::read_labels(dir_ / "out" / "labels.txt"),
+              io::read_labels(dir_ / "out" / "labels.bin"));
     // The goals open as a plain PLY cloud with normals (what Open3D and CloudCompare see).
     const PointCloud goals = io::read_cloud(dir_ / "out" / "coverage.ply");
     EXPECT_GT(goals.size(), 100u);
@@ -81,7 +84,8 @@ TEST_F(CliGrow, WritesEveryOutputAndTheSummaryLine) {
     EXPECT_FALSE(fs::exists(dir_ / "out" / "coverage.csv"));
     EXPECT_TRUE(fs::exists(dir_ / "out" / "coverage.ply"));
     // Labels: one per input point, NaN points unregistered, ids within range.
-    const auto labels = io::read_labels_txt(dir_ / "out" / "labels.txt");
+    const auto labels = io::read_labels(dir_ / "out" / "labels.bin");
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "labels.txt"));  // text only on request
     ASSERT_EQ(labels.size(), cloud_.size());
     const io::StoredResult res = io::read_result_json(dir_ / "out" / "surfaces.json");
     for (std::size_t i = 0; i < labels.size(); ++i) {
@@ -110,7 +114,7 @@ TEST_F(CliGrow, ByteIdenticalOutputsForAnyThreadCount) {
             << r.out;
     }
     for (const char* f :
-         {"surfaces.ply", "surfaces.json", "labels.txt", "surfaces.png", "planes.json",
+         {"surfaces.ply", "surfaces.json", "labels.bin", "surfaces.png", "planes.json",
           "planes.ply", "coverage.json", "coverage.ply", "occupancy.ply", "occupancy.json",
           "environment.bt", "collision_spheres.json", "collision_spheres.ply"}) {
         const std::string ref = test::read_bytes(dir_ / "t1" / f);
@@ -391,7 +395,7 @@ TEST_F(CliGrow, EmptyCloudIsNotAnError) {
     const CliRun r = surfgrow("grow " + q(dir_ / "empty.ply") + " -o " + q(dir_ / "out"));
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_NE(r.out.find("0 points -> 0 surfaces"), std::string::npos) << r.out;
-    EXPECT_TRUE(test::read_bytes(dir_ / "out" / "labels.txt").empty());
+    EXPECT_TRUE(test::read_bytes(dir_ / "out" / "labels.bin").empty());
 }
 
 TEST_F(CliGrow, UnwritableOutputIsCannotWrite) {

@@ -89,7 +89,7 @@ TEST_F(CliRobot, OccupancyWritesTheGridAndAnOctomapThatLoads) {
     EXPECT_NE(r.out.find("occupied cubes of 12 mm"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("without free space"), std::string::npos) << r.out;
     // The same grid as computed in process from the stored labels.
-    const auto labels = io::read_labels_txt(out_ / "labels.txt");
+    const auto labels = io::read_labels(out_ / "labels.bin");
     const OccupancyGrid grid = occupancy_grid(io::read_cloud(input_), labels, GrowerConfig{});
     const Json j = Json::parse(test::read_bytes(out_ / "occupancy.json"));
     EXPECT_EQ(j["occupied_cubes"].get<std::size_t>(), grid.size());
@@ -139,7 +139,7 @@ TEST_F(CliRobot, OccupancyFollowsTheCropOfTheResult) {
     config.crop.radius = 0.25;
     config.crop.center = Vec3d(0.1, 0, 0.55);
     const OccupancyGrid grid =
-        occupancy_grid(io::read_cloud(input_), io::read_labels_txt(crop / "labels.txt"), config);
+        occupancy_grid(io::read_cloud(input_), io::read_labels(crop / "labels.bin"), config);
     const Json j = Json::parse(test::read_bytes(crop / "occupancy.json"));
     EXPECT_EQ(j["occupied_cubes"].get<std::size_t>(), grid.size());
     EXPECT_EQ(j["origin"][0].get<double>(), grid.origin().x());
@@ -151,7 +151,7 @@ TEST_F(CliRobot, OccupancyRefusesAnotherCloudAndMissingInputs) {
     io::write_cloud(dir_ / "other.ply", other);
     CliRun r = surfgrow(cat({"occupancy ", q(out_), " --cloud ", q(dir_ / "other.ply")}));
     EXPECT_EQ(r.code, code(ErrorCode::kMalformedInput)) << r.out;
-    EXPECT_NE(r.out.find("labels.txt"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("labels.bin"), std::string::npos) << r.out;
     // Same size, different points: the grown-point count gives it away.
     PointCloud moved = cloud_;
     for (std::size_t i = 0; i < moved.size(); i += 3) moved.points[i] = Vec3f::Constant(NAN);
@@ -167,7 +167,7 @@ TEST_F(CliRobot, OccupancyRefusesAnotherCloudAndMissingInputs) {
     EXPECT_EQ(r.code, code(ErrorCode::kUsage)) << r.out;
     r = surfgrow(cat({"occupancy ", q(out_), " --cloud ", q(input_), " --viewpoint 0,0,1"}));
     EXPECT_EQ(r.code, code(ErrorCode::kUsage)) << r.out;
-    fs::remove(out_ / "labels.txt");
+    fs::remove(out_ / "labels.bin");
     r = surfgrow(cat({"occupancy ", q(out_), " --cloud ", q(input_)}));
     EXPECT_EQ(r.code, code(ErrorCode::kCannotOpen)) << r.out;
 }

@@ -431,7 +431,7 @@ TEST(CliDemo, WritesEveryOutputAndPrintsTheSummaryAndEvalLines) {
     EXPECT_NE(r.out.find("eval: "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("range bands"), std::string::npos) << r.out;
     for (const char* f :
-         {"surfaces.ply", "surfaces.json", "labels.txt", "run.json", "surfaces.png", "planes.json",
+         {"surfaces.ply", "surfaces.json", "labels.bin", "run.json", "surfaces.png", "planes.json",
           "coverage.ply", "environment.bt", "eval.json", "scan/cloud.ply", "scan/scene.json",
           "scan/truth-faces.json", "scan/poses.txt", "scan/scan-002.sgraw"})
         EXPECT_TRUE(fs::is_regular_file(dir / "demo" / f)) << f;

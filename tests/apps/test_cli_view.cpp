@@ -146,7 +146,7 @@ TEST_F(CliView, PageDataMatchesTheResultAndTheCloud) {
     const auto rgb = array_of<std::uint8_t>(page, layers["cloud"]["color"]);
     ASSERT_EQ(xyz.size(), 3 * finite_points());
     render::Scene points = scene;  // with the disks, so each point knows its disk
-    const auto labels = io::read_labels_txt(box_->out / "labels.txt");
+    const auto labels = io::read_labels(box_->out / "labels.bin");
     render::add_points(points, box_->points, labels, box_->result.surfaces.size());
     // With each point, its surface's normal (Int8, x127), so it can go with its disk.
     const auto normals = array_of<std::int8_t>(page, layers["cloud"]["normal"]);

@@ -270,6 +270,28 @@ TEST(ResultsIo, LabelsRoundTrip) {
     write_atomically(dir / "labels.txt", [&](std::ostream& o) { write_labels_txt(o, labels); });
     EXPECT_EQ(test::read_bytes(dir / "labels.txt"), "-1\n0\n5\n2147483647\n-1\n12\n");
     EXPECT_EQ(read_labels_txt(dir / "labels.txt"), labels);
+    // labels.bin: the int32s themselves, little-endian; read_labels picks the reader by name.
+    write_atomically(dir / "labels.bin", [&](std::ostream& o) { write_labels_bin(o, labels); });
+    const std::string bytes = test::read_bytes(dir / "labels.bin");
+    ASSERT_EQ(bytes.size(), 4 * labels.size());
+    EXPECT_EQ(bytes.substr(0, 8), std::string("\xff\xff\xff\xff\x00\x00\x00\x00", 8));
+    EXPECT_EQ(read_labels(dir / "labels.bin"), labels);
+    EXPECT_EQ(read_labels(dir / "labels.txt"), labels);
+    EXPECT_EQ(labels_file(dir.path()), dir / "labels.bin");
+    std::filesystem::remove(dir / "labels.bin");
+    EXPECT_EQ(labels_file(dir.path()), dir / "labels.txt");  // a folder from before labels.bin
+    // A size that is not whole labels, an id below -1: refused by name.
+    for (const std::string& bad :
+         {std::string("\x01\x00\x00", 3), std::string("\xfe\xff\xff\xff", 4)}) {
+        try {
+            (void)parse_labels_bin(bad, "out/labels.bin");
+            ADD_FAILURE() << bad.size();
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ErrorCode::kMalformedInput);
+            EXPECT_NE(std::string(e.what()).find("out/labels.bin"), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_TRUE(parse_labels_bin("", "empty").empty());
 }
 
 TEST(ResultsIo, CsvHasOneRowPerSurface) {

@@ -278,7 +278,7 @@ TEST(ResultOutputs, StagesEveryFileOfAPipelineResultTogether) {
         tx.commit();
     }
     for (const char* f :
-         {"surfaces.ply", "surfaces.json", "labels.txt", "planes.json", "planes.ply",
+         {"surfaces.ply", "surfaces.json", "labels.bin", "planes.json", "planes.ply",
           "coverage.json", "coverage.ply", "occupancy.ply", "occupancy.json", "environment.bt",
           "collision_spheres.json", "collision_spheres.ply"})
         EXPECT_TRUE(std::filesystem::is_regular_file(dir / f)) << f;
@@ -319,8 +319,8 @@ TEST(ResultOutputs, FilesFollowTheChoiceAndTheStagesRun) {
     for (const char* f : {"surfaces.ply", "surfaces.json", "surfaces.csv", "planes.json",
                           "planes.ply", "planes.obj", "occupancy.ply", "occupancy.json"})
         EXPECT_TRUE(std::filesystem::is_regular_file(dir / f)) << f;
-    for (const char* f : {"labels.txt", "coverage.json", "coverage.ply", "environment.bt",
-                          "collision_spheres.json", "collision_spheres.ply"})
+    for (const char* f : {"labels.bin", "labels.txt", "coverage.json", "coverage.ply",
+                          "environment.bt", "collision_spheres.json", "collision_spheres.ply"})
         EXPECT_FALSE(std::filesystem::exists(dir / f)) << f;
 }
 

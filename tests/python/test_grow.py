@@ -79,7 +79,7 @@ def test_same_as_cli(tmp_path, cli):
                     "--no-picture", "--no-octomap", "--no-coverage", "--no-planes",
                     "--no-occupancy"], check=True)
     r = surfgrow.grow(surfgrow.read_cloud(cloud_file), seed=3)
-    labels = np.loadtxt(tmp_path / "out" / "labels.txt", dtype=np.int32)
+    labels = np.fromfile(tmp_path / "out" / "labels.bin", dtype="<i4")
     assert np.array_equal(r.labels, labels)
     # surfaces.ply: a numpy record array straight from its header.
     data = (tmp_path / "out" / "surfaces.ply").read_bytes()

@@ -57,10 +57,10 @@ GrownCloud read_grown_cloud(const fs::path& cloud_file, const ResultFolder& fold
         for (Vec3f& p : g.cloud.points) p += s;
         g.cloud.offset = folder.result.meta.offset;
     }
-    const fs::path labels = folder.dir / "labels.txt";
+    const fs::path labels = labels_file(folder.dir);
     std::error_code ec;
     if (!fs::exists(labels, ec)) return g;
-    g.labels = read_labels_txt(labels);
+    g.labels = read_labels(labels);
     if (g.labels.size() != g.cloud.size())
         throw Error(ErrorCode::kMalformedInput,
                     cat({labels.string(), " has ", std::to_string(g.labels.size()), " labels but ",
@@ -80,14 +80,13 @@ GrownCloud read_grown_cloud(const fs::path& cloud_file, const ResultFolder& fold
     for (std::size_t i = 0; i < g.labels.size(); ++i) {
         if (g.labels[i] >= surfaces)
             throw Error(ErrorCode::kMalformedInput,
-                        cat({labels.string(), ": line ", std::to_string(i + 1), " names surface ",
-                             std::to_string(g.labels[i]), " but the result has ",
-                             std::to_string(surfaces), " surfaces"}));
+                        cat({labels.string(), ": point ", std::to_string(i),
+                             "'s label names surface ", std::to_string(g.labels[i]),
+                             " but the result has ", std::to_string(surfaces), " surfaces"}));
         if (g.labels[i] >= 0 && !grown[i])
             throw Error(ErrorCode::kMalformedInput,
-                        cat({labels.string(), ": line ", std::to_string(i + 1),
-                             " names a surface for a point that was not grown (NaN or outside "
-                             "the workspace)"}));
+                        cat({labels.string(), ": point ", std::to_string(i),
+                             " has a surface but was not grown (NaN or outside the workspace)"}));
     }
     return g;
 }
@@ -100,9 +99,9 @@ GrownFolder read_grown_folder(const fs::path& dir, const fs::path& cloud_file) {
     ResultFolder folder = read_result_folder(dir);
     GrownCloud g = read_grown_cloud(cloud_file, folder);
     std::error_code ec;
-    if (!fs::exists(dir / "labels.txt", ec))
+    if (!fs::exists(labels_file(dir), ec))
         throw Error(ErrorCode::kCannotOpen,
-                    cat({(dir / "labels.txt").string(),
+                    cat({labels_file(dir).string(),
                          " is missing (was the result grown with --no-labels?)"}));
     return GrownFolder{std::move(folder.result), std::move(g.cloud), std::move(g.labels)};
 }

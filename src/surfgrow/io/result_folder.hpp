@@ -33,13 +33,14 @@ void check_derived_file(const std::filesystem::path& file, const ResultMeta& met
                         std::string_view redo);
 
 /// The cloud a result was grown from, in the result's frame (positions relative to its offset),
-/// with the surface of each point from labels.txt (empty when the folder has none).
+/// with the surface of each point from its labels (labels.bin, or labels.txt in older folders;
+/// empty when the folder has neither).
 struct GrownCloud {
     PointCloud cloud;
     std::vector<std::int32_t> labels;
 };
 
-/// Reads `cloud_file` and folder.dir/labels.txt. Throws what read_cloud throws, and
+/// Reads `cloud_file` and the folder's labels (labels_file). Throws what read_cloud throws, and
 /// Error(kMalformedInput) when the labels do not match the cloud (another count, or another count
 /// of points the grower would index: not the cloud that was grown), name surfaces the result does
 /// not have, or give a surface to a point that was not grown.
@@ -50,13 +51,13 @@ struct GrownCloud {
 struct GrownFolder {
     StoredResult result;               ///< DIR/surfaces.json
     PointCloud cloud;                  ///< the cloud, in the result's frame (same offset)
-    std::vector<std::int32_t> labels;  ///< DIR/labels.txt, one per cloud point
+    std::vector<std::int32_t> labels;  ///< DIR/labels.bin (or .txt), one per cloud point
 };
 
 /// read_result_folder(dir).result.
 [[nodiscard]] StoredResult read_grown_result(const std::filesystem::path& dir);
 
-/// read_result_folder and read_grown_cloud, and DIR/labels.txt must exist: throws
+/// read_result_folder and read_grown_cloud, and the labels must exist: throws
 /// Error(kCannotOpen) when the result was grown with --no-labels.
 [[nodiscard]] GrownFolder read_grown_folder(const std::filesystem::path& dir,
                                             const std::filesystem::path& cloud_file);

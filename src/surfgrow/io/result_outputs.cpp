@@ -21,6 +21,7 @@ namespace surfgrow::io {
 bool is_result_file(std::string_view file_name) {
     static constexpr std::string_view kNames[] = {"surfaces.ply",
                                                   "surfaces.json",
+                                                  "labels.bin",
                                                   "labels.txt",
                                                   "surfaces.csv",
                                                   "planes.json",
@@ -112,7 +113,9 @@ OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,
                              [&] { return octomap_bytes(*result.occupancy, cloud, config.grow); });
     tx.add("surfaces.ply", [&](std::ostream& o) { write_surfaces_ply(o, r.surfaces, meta); });
     tx.add("surfaces.json", [&](std::ostream& o) { write_result_json(o, r, config.grow, meta); });
-    if (files.labels) tx.add("labels.txt", [&](std::ostream& o) { write_labels_txt(o, r.labels); });
+    if (files.labels) tx.add(kLabelsFile, [&](std::ostream& o) { write_labels_bin(o, r.labels); });
+    if (files.labels_txt)
+        tx.add("labels.txt", [&](std::ostream& o) { write_labels_txt(o, r.labels); });
     if (files.csv)
         tx.add("surfaces.csv", [&](std::ostream& o) { write_surfaces_csv(o, r.surfaces, meta); });
     if (result.planes) stage_planes(tx, *result.planes, meta, files.planes_obj);

@@ -23,7 +23,8 @@ namespace surfgrow::io {
 /// Which files to write besides surfaces.ply and surfaces.json. The robot outputs' files are
 /// written when the result holds them.
 struct ResultFiles {
-    bool labels = true;         ///< labels.txt
+    bool labels = true;         ///< labels.bin
+    bool labels_txt = false;    ///< labels.txt besides (or, without labels, instead of) labels.bin
     bool csv = false;           ///< surfaces.csv
     bool planes_obj = false;    ///< planes.obj besides planes.json and planes.ply
     bool coverage_csv = false;  ///< coverage.csv besides coverage.json and coverage.ply
@@ -51,7 +52,7 @@ struct OccupancySummary {
 [[nodiscard]] bool is_result_file(std::string_view file_name);
 
 /// Stages the files of `result`, computed over `cloud` by a Pipeline with `config`: surfaces.ply,
-/// surfaces.json and, as `files` and the result have them, labels.txt, surfaces.csv, planes.*,
+/// surfaces.json and, as `files` and the result have them, labels.bin/.txt, surfaces.csv, planes.*,
 /// coverage.*, occupancy.*, environment.bt, collision_spheres.*. Returns what the occupancy
 /// outputs found (zero when there is no grid).
 OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,

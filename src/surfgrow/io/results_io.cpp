@@ -300,6 +300,12 @@ void write_surfaces_csv(std::ostream& out, std::span<const Surface> surfaces,
     out << text;
 }
 
+void write_labels_bin(std::ostream& out, std::span<const std::int32_t> labels) {
+    // Little-endian hosts (checked above): the array's bytes are the file.
+    out.write(reinterpret_cast<const char*>(labels.data()),
+              static_cast<std::streamsize>(labels.size_bytes()));
+}
+
 void write_labels_txt(std::ostream& out, std::span<const std::int32_t> labels) {
     std::string text;
     text.reserve(std::min<std::size_t>(labels.size(), 1u << 18) * 7);
@@ -499,6 +505,33 @@ StoredResult parse_result_json(std::string_view text, std::string_view source) {
         malformed(file, e.what());
     }
     return r;
+}
+
+std::filesystem::path labels_file(const std::filesystem::path& dir) {
+    std::error_code ec;
+    const std::filesystem::path bin = dir / kLabelsFile, txt = dir / "labels.txt";
+    if (!std::filesystem::exists(bin, ec) && std::filesystem::exists(txt, ec)) return txt;
+    return bin;
+}
+
+std::vector<std::int32_t> read_labels(const std::filesystem::path& file) {
+    if (file.extension() == ".txt") return read_labels_txt(file);
+    const FileBytes bytes = FileBytes::read(file);
+    return parse_labels_bin(bytes.view(), file.string());
+}
+
+std::vector<std::int32_t> parse_labels_bin(std::string_view bytes, std::string_view source) {
+    const std::filesystem::path file(source);
+    if (bytes.size() % sizeof(std::int32_t) != 0)
+        malformed(file, cat({"is ", std::to_string(bytes.size()),
+                             " bytes: not a whole number of 4-byte labels"}));
+    std::vector<std::int32_t> labels(bytes.size() / sizeof(std::int32_t));
+    if (!labels.empty()) std::memcpy(labels.data(), bytes.data(), bytes.size());
+    for (std::size_t i = 0; i < labels.size(); ++i)
+        if (labels[i] < -1)
+            malformed(file, cat({"point ", std::to_string(i), " has label ",
+                                 std::to_string(labels[i]), ": not a surface id (>= -1)"}));
+    return labels;
 }
 
 std::vector<std::int32_t> read_labels_txt(const std::filesystem::path& file) {

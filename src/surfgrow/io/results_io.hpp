@@ -31,6 +31,9 @@ struct ResultMeta {
 [[nodiscard]] std::string result_id(const GrowResult& result, const GrowerConfig& config,
                                     const ResultMeta& meta);
 
+/// The labels of a result folder, in binary.
+inline constexpr const char* kLabelsFile = "labels.bin";
+
 /// Where surfaces.json (version 2) says its surfaces are, beside it.
 inline constexpr const char* kSurfacesFile = "surfaces.ply";
 
@@ -53,7 +56,11 @@ void write_result_json(std::ostream& out, const GrowResult& result, const Grower
 void write_surfaces_csv(std::ostream& out, std::span<const Surface> surfaces,
                         const ResultMeta& meta);
 
-/// labels.txt: the surface id of every input point (-1 if unregistered), one per line, input order.
+/// labels.bin: the surface id of every input point (-1 if unregistered), in input order, each a
+/// little-endian int32 and nothing else (numpy: np.fromfile("labels.bin", "<i4")).
+void write_labels_bin(std::ostream& out, std::span<const std::int32_t> labels);
+
+/// labels.txt: the same as text, one id per line (`--labels-txt`; the only form before labels.bin).
 void write_labels_txt(std::ostream& out, std::span<const std::int32_t> labels);
 
 /// A result read back from a folder written by `surfgrow grow`.
@@ -89,6 +96,19 @@ struct StoredSurfaces {
 /// The same for surfaces.ply held in memory; `source` names it in messages.
 [[nodiscard]] StoredSurfaces parse_surfaces_ply(std::string_view bytes, std::string_view source,
                                                 const Vec3d& offset = Vec3d::Zero());
+
+/// The labels file of result folder `dir`: labels.bin, else labels.txt (folders written before
+/// labels.bin, or with --labels-txt alone); labels.bin's path when it has neither.
+[[nodiscard]] std::filesystem::path labels_file(const std::filesystem::path& dir);
+
+/// Reads labels.bin or labels.txt, by the file's extension. Throws Error(kCannotOpen /
+/// kMalformedInput).
+[[nodiscard]] std::vector<std::int32_t> read_labels(const std::filesystem::path& file);
+
+/// The same for labels.bin held in memory; `source` names it in messages. Refuses a size that is
+/// not a whole number of labels and an id below -1.
+[[nodiscard]] std::vector<std::int32_t> parse_labels_bin(std::string_view bytes,
+                                                         std::string_view source);
 
 /// Reads labels.txt. Throws Error(kCannotOpen / kMalformedInput).
 [[nodiscard]] std::vector<std::int32_t> read_labels_txt(const std::filesystem::path& file);
