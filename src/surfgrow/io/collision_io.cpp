@@ -5,6 +5,9 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
+
+#include "surfgrow/io/fixed_ply_header.hpp"
 
 namespace surfgrow::io {
 
@@ -52,15 +55,12 @@ void write_collision_spheres_json(std::ostream& out, const CollisionSpheres& sph
 void write_collision_spheres_ply(std::ostream& out, const CollisionSpheres& spheres,
                                  const ResultMeta& meta) {
     const bool wide = meta.offset != Vec3d::Zero();  // keep georeferenced precision
-    const std::string pos = wide ? "double" : "float";
-    std::string head =
-        "ply\nformat binary_little_endian 1.0\n"
-        "comment surfgrow collision spheres: one vertex per sphere at its centre\n";
-    head += "comment units " + meta.units + "\ncomment result_id " + meta.result_id + "\n";
-    head += "element vertex " + std::to_string(spheres.size()) + "\n";
-    for (const char* axis : {"x", "y", "z"}) head += "property " + pos + " " + axis + "\n";
-    head += "property float radius\nend_header\n";
-    std::string body(spheres.size() * (wide ? 28 : 16), '\0');
+    const std::string pos = wide ? "double " : "float ";
+    const std::vector<std::string> layout = {pos + "x", pos + "y", pos + "z", "float radius"};
+    const std::string head =
+        fixed_ply_head("surfgrow collision spheres: one vertex per sphere at its centre",
+                       meta.units, meta.result_id, spheres.size(), layout);
+    std::string body(spheres.size() * record_bytes(layout), '\0');
     char* at = body.data();
     auto put = [&at](auto v) {
         std::memcpy(at, &v, sizeof v);  // little-endian hosts (results_io.cpp checks)

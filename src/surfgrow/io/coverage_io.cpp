@@ -50,14 +50,6 @@ std::vector<std::string> goal_layout(bool wide) {
     return layout;
 }
 
-// Bytes of one goal: the sizes of the layout's types.
-std::size_t goal_bytes(const std::vector<std::string>& layout) {
-    std::size_t bytes = 0;
-    for (const std::string& p : layout)
-        bytes += p.starts_with("double ") ? 8 : p.starts_with("uchar ") ? 1 : 4;
-    return bytes;
-}
-
 }  // namespace
 
 void write_coverage_json(std::ostream& out, const CoveragePlan& plan, const ResultMeta& meta) {
@@ -112,13 +104,10 @@ void write_coverage_json(std::ostream& out, const CoveragePlan& plan, const Resu
 void write_coverage_ply(std::ostream& out, const CoveragePlan& plan, const ResultMeta& meta) {
     const bool wide = meta.offset != Vec3d::Zero();  // keep georeferenced precision
     const std::vector<std::string> layout = goal_layout(wide);
-    std::string head = cat({"ply\nformat binary_little_endian 1.0\n",
-                            "comment surfgrow coverage goals: one vertex per goal in path order\n",
-                            "comment units ", meta.units, "\ncomment result_id ", meta.result_id,
-                            "\nelement vertex ", std::to_string(plan.goals.size()), "\n"});
-    for (const std::string& p : layout) head += cat({"property ", p, "\n"});
-    head += "end_header\n";
-    std::string body(plan.goals.size() * goal_bytes(layout), '\0');
+    const std::string head =
+        fixed_ply_head("surfgrow coverage goals: one vertex per goal in path order", meta.units,
+                       meta.result_id, plan.goals.size(), layout);
+    std::string body(plan.goals.size() * record_bytes(layout), '\0');
     char* at = body.data();
     auto put = [&at](auto v) {
         std::memcpy(at, &v, sizeof v);
@@ -211,14 +200,12 @@ StoredGoals parse_coverage_ply(std::string_view all, std::string_view source, co
     const FixedPlyHeader h = read_fixed_ply_header(all, source);
     const bool wide = h.positions_in_double();
     const std::vector<std::string> layout = goal_layout(wide);
-    std::vector<std::string> expected = {"element vertex"};
-    expected.insert(expected.end(), layout.begin(), layout.end());
-    if (!h.binary_little_endian || h.layout != expected)
+    if (!h.is_vertex_layout(layout))
         malformed(file,
                   "not a surfgrow coverage goals file (expected the layout coverage.ply is "
                   "written in)");
     const std::uint64_t count = h.elements[0].second;
-    const std::size_t size = goal_bytes(layout);
+    const std::size_t size = record_bytes(layout);
     const std::size_t body = h.body;
     if (count > all.size() / size || all.size() - body != count * size)
         malformed(file, cat({"truncated or too long: the header promises ", std::to_string(count),

@@ -1,7 +1,10 @@
 #include "surfgrow/io/fixed_ply_header.hpp"
 
+#include <algorithm>
 #include <sstream>
+#include <string>
 
+#include "surfgrow/core/text.hpp"
 #include "surfgrow/io/io_error.hpp"
 
 namespace surfgrow::io {
@@ -40,6 +43,29 @@ FixedPlyHeader read_fixed_ply_header(std::string_view all, std::string_view sour
         }
     }
     return h;
+}
+
+bool FixedPlyHeader::is_vertex_layout(std::span<const std::string> properties) const {
+    return binary_little_endian && !layout.empty() && layout[0] == "element vertex" &&
+           std::equal(layout.begin() + 1, layout.end(), properties.begin(), properties.end());
+}
+
+std::string fixed_ply_head(std::string_view what, std::string_view units,
+                           std::string_view result_id, std::size_t count,
+                           std::span<const std::string> properties) {
+    std::string head =
+        cat({"ply\nformat binary_little_endian 1.0\ncomment ", what, "\ncomment units ", units,
+             "\ncomment result_id ", result_id, "\nelement vertex ", std::to_string(count), "\n"});
+    for (const std::string& p : properties) head += cat({"property ", p, "\n"});
+    head += "end_header\n";
+    return head;
+}
+
+std::size_t record_bytes(std::span<const std::string> properties) {
+    std::size_t bytes = 0;
+    for (const std::string& p : properties)
+        bytes += p.starts_with("double ") ? 8 : p.starts_with("uchar ") ? 1 : 4;
+    return bytes;
 }
 
 }  // namespace surfgrow::io

@@ -1,9 +1,11 @@
-// The header of a PLY file surfgrow writes in one fixed binary layout (planes.ply, coverage.ply),
-// read back by their own strict readers; clouds of any layout go through ply_reader instead.
+// The header of a PLY file surfgrow writes in one fixed binary layout (surfaces.ply, planes.ply,
+// coverage.ply, collision_spheres.ply), written and read back by their own strict readers; clouds
+// of any layout go through ply_reader instead.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -26,7 +28,19 @@ struct FixedPlyHeader {
     [[nodiscard]] bool positions_in_double() const {
         return layout.size() > 1 && layout[1] == "double x";
     }
+    /// Whether the file is binary little-endian with one element, "vertex", of exactly
+    /// `properties` ("TYPE NAME" each, in file order).
+    [[nodiscard]] bool is_vertex_layout(std::span<const std::string> properties) const;
 };
+
+/// The header of a binary little-endian PLY of `count` vertices of `properties` ("TYPE NAME"
+/// each): `what` as its first comment, then the units and the result_id.
+[[nodiscard]] std::string fixed_ply_head(std::string_view what, std::string_view units,
+                                         std::string_view result_id, std::size_t count,
+                                         std::span<const std::string> properties);
+
+/// Bytes of one vertex of `properties`: double 8, uchar 1, any other (float, int, uint) 4.
+[[nodiscard]] std::size_t record_bytes(std::span<const std::string> properties);
 
 /// Reads the header of `bytes`. Throws Error(kMalformedInput) naming `source` when there is no
 /// "ply" line or no end_header.

@@ -206,26 +206,15 @@ std::vector<std::string> surface_layout() {
     return layout;
 }
 
-// Bytes of one surface: the sizes of the layout's types.
-std::size_t surface_bytes(const std::vector<std::string>& layout) {
-    std::size_t bytes = 0;
-    for (const std::string& p : layout) bytes += p.starts_with("double ") ? 8 : 4;
-    return bytes;
-}
-
 }  // namespace
 
 void write_surfaces_ply(std::ostream& out, std::span<const Surface> surfaces,
                         const ResultMeta& meta) {
     const std::vector<std::string> layout = surface_layout();
-    std::string head = cat({"ply\nformat binary_little_endian 1.0\n",
-                            "comment surfgrow surfaces: one vertex per surface at its home point, "
-                            "with its normal\n",
-                            "comment units ", meta.units, "\ncomment result_id ", meta.result_id,
-                            "\nelement vertex ", std::to_string(surfaces.size()), "\n"});
-    for (const std::string& p : layout) head += cat({"property ", p, "\n"});
-    head += "end_header\n";
-    std::string body(surfaces.size() * surface_bytes(layout), '\0');
+    const std::string head = fixed_ply_head(
+        "surfgrow surfaces: one vertex per surface at its home point, with its normal", meta.units,
+        meta.result_id, surfaces.size(), layout);
+    std::string body(surfaces.size() * record_bytes(layout), '\0');
     char* at = body.data();
     auto put = [&at](auto v) {
         std::memcpy(at, &v, sizeof v);  // little-endian hosts only (checked above)
@@ -355,14 +344,12 @@ StoredSurfaces parse_surfaces_ply(std::string_view all, std::string_view source,
     const std::filesystem::path file(source);
     const FixedPlyHeader h = read_fixed_ply_header(all, source);
     const std::vector<std::string> layout = surface_layout();
-    std::vector<std::string> expected = {"element vertex"};
-    expected.insert(expected.end(), layout.begin(), layout.end());
-    if (!h.binary_little_endian || h.layout != expected)
+    if (!h.is_vertex_layout(layout))
         malformed(file,
                   "not a surfgrow surfaces file (expected the layout surfaces.ply is written in; "
                   "folders written before version 2 keep their surfaces in surfaces.json)");
     const std::uint64_t count = h.elements[0].second;
-    const std::size_t size = surface_bytes(layout);
+    const std::size_t size = record_bytes(layout);
     if (count > all.size() / size || all.size() - h.body != count * size)
         malformed(file, cat({"truncated or too long: the header promises ", std::to_string(count),
                              " surfaces"}));
