@@ -44,15 +44,6 @@ void add_all_commands(CLI::App& app) {
     add_study_command(app);
 }
 
-void parse_command_line(CLI::App& app, int argc, const char* const* argv) {
-    for (int i = 1; i < argc; ++i)
-        if (argv[i][0] == '\0')
-            throw CLI::ValidationError(
-                "argument " + std::to_string(i) +
-                " is empty: leave it out (an option's value cannot be empty)");
-    app.parse(argc, argv);
-}
-
 std::unique_ptr<CLI::App> make_app() {
     auto app = std::make_unique<CLI::App>(
         "surfgrow: laser-scan point clouds to oriented surface patches (Paul, Liu, Kirchner)");

@@ -15,7 +15,9 @@ void add_all_commands(CLI::App& app);
 
 /// app.parse(argc, argv), refusing an empty argument first (CLI::ValidationError, exit 2): CLI11
 /// 2.1 takes "" for the name of a nameless option group (grow's output groups) and then loops
-/// forever on an unknown short flag (`grow x "" -ht`, found by fuzz/cli_args).
+/// forever on an unknown short flag (`grow x "" -ht`, found by fuzz/cli_args). A flag's value
+/// beyond 64 bits (`--csv=99999999999999999999`), which CLI11 lets out as std::out_of_range, is
+/// a usage error too (command_line.cpp, on its own: see there).
 void parse_command_line(CLI::App& app, int argc, const char* const* argv);
 
 }  // namespace surfgrow::cli

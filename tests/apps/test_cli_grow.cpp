@@ -415,6 +415,18 @@ TEST(Cli, VersionAndHelp) {
 
 // Found by fuzz/cli_args: CLI11 2.1 took "" for grow's nameless option groups and then looped
 // for ever on -ht. An empty argument is now a usage error (under `timeout`, should it hang again).
+// CLI11 reads a flag's value with std::stoll: one beyond 64 bits was an "internal error" (exit 1,
+// and std::terminate in fuzz/cli_args, whose finding this is); now a usage error.
+TEST(CliArgs, AFlagValueBeyond64BitsIsAUsageError) {
+    for (const char* args :
+         {"grow x.ply --no-labels=99999999999999999999999",
+          "grow x.ply --no-picture=18446744073709551616", "planes out --obj=1e99999"}) {
+        const CliRun r = test::run_surfgrow(args, "timeout 60 ");
+        EXPECT_EQ(r.code, static_cast<int>(ErrorCode::kUsage)) << args << ": " << r.out;
+        EXPECT_EQ(r.out.find("internal error"), std::string::npos) << args << ": " << r.out;
+    }
+}
+
 TEST(CliArgs, EmptyArgumentIsAUsageError) {
     for (const char* args : {"grow x '' -ht", "grow x ''", "grow '' x", "planes out --cloud ''"}) {
         const CliRun r = test::run_surfgrow(args, "timeout 60 ");
