@@ -98,11 +98,11 @@ StoredResult read_grown_result(const fs::path& dir) {
 GrownFolder read_grown_folder(const fs::path& dir, const fs::path& cloud_file) {
     ResultFolder folder = read_result_folder(dir);
     GrownCloud g = read_grown_cloud(cloud_file, folder);
+    const fs::path labels = labels_file(dir);
     std::error_code ec;
-    if (!fs::exists(labels_file(dir), ec))
+    if (!fs::exists(labels, ec))
         throw Error(ErrorCode::kCannotOpen,
-                    cat({labels_file(dir).string(),
-                         " is missing (was the result grown with --no-labels?)"}));
+                    cat({labels.string(), " is missing (was the result grown with --no-labels?)"}));
     return GrownFolder{std::move(folder.result), std::move(g.cloud), std::move(g.labels)};
 }
 
