@@ -18,6 +18,7 @@
 #include "surfgrow/core/threads.hpp"
 #include "surfgrow/planes/boundary_polygon.hpp"
 #include "surfgrow/planes/patch_adjacency.hpp"
+#include "surfgrow/planes/patch_members.hpp"
 #include "surfgrow/planes/plane_raster.hpp"
 
 namespace surfgrow {
@@ -88,31 +89,6 @@ CentredMoments inlier_moments(std::span<const Vec3d> points, const Vec3d& normal
     return CentredMoments::of(about_centroid, centroid);
 }
 
-// Member points of each surface, input order: CSR offsets and indices.
-struct Members {
-    std::vector<std::uint32_t> offset;  // surfaces + 1
-    std::vector<std::uint32_t> index;
-    [[nodiscard]] std::span<const std::uint32_t> of(std::size_t s) const {
-        return {index.data() + offset[s], offset[s + 1] - offset[s]};
-    }
-};
-
-Members collect_members(std::span<const Vec3f> points, std::span<const std::int32_t> labels,
-                        std::size_t surfaces) {
-    Members m;
-    m.offset.assign(surfaces + 1, 0);
-    for (std::size_t i = 0; i < labels.size(); ++i)
-        if (labels[i] >= 0 && is_finite(points[i]))
-            ++m.offset[static_cast<std::size_t>(labels[i]) + 1];
-    for (std::size_t s = 0; s < surfaces; ++s) m.offset[s + 1] += m.offset[s];
-    m.index.resize(m.offset[surfaces]);
-    std::vector<std::uint32_t> fill(m.offset.begin(), m.offset.end() - 1);
-    for (std::size_t i = 0; i < labels.size(); ++i)
-        if (labels[i] >= 0 && is_finite(points[i]))
-            m.index[fill[static_cast<std::size_t>(labels[i])]++] = static_cast<std::uint32_t>(i);
-    return m;
-}
-
 // A region of at most kFragmentPatches patches (a patch on an edge, a noisy patch whose normal
 // missed the angle test) whose member points lie, at least kFragmentFit of them, as close to an
 // adjacent larger region's plane as that region's own points do (within the offset, or twice
@@ -122,7 +98,7 @@ Members collect_members(std::span<const Vec3f> points, std::span<const std::int3
 constexpr std::size_t kFragmentPatches = 2;
 constexpr double kFragmentFit = 0.8;
 
-void absorb_fragments(std::span<const Vec3f> points, const Members& members,
+void absorb_fragments(std::span<const Vec3f> points, const PatchMembers& members,
                       const std::vector<std::uint32_t>& adj_off,
                       const std::vector<std::uint32_t>& adj, const BoundPlaneConfig& cfg,
                       std::vector<std::int32_t>& region,
@@ -200,14 +176,16 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
     const std::size_t nr = region_members.size();
     if (cfg.max_gap <= 0 || nr < 2) return;
     std::vector<Vec3f> homes(surfaces.size());
-    double max_radius = 0;
+    std::vector<double> radii;
     for (std::size_t s = 0; s < surfaces.size(); ++s) {
         homes[s] = surfaces[s].home.cast<float>();
-        if (used[s]) max_radius = std::max(max_radius, surfaces[s].radius);
+        if (used[s]) radii.push_back(surfaces[s].radius);
     }
     // Candidate region pairs, in parallel over the patches (sorted and unique in the end, so the
-    // same for any thread count).
-    const CubeIndex index(homes, cfg.max_gap + 2 * max_radius, used, 1);
+    // same for any thread count). Patches a, b qualify when |home b - home a| - r_a - r_b is at
+    // most the gap, so within gap + 2 max(r_a, r_b): each pair is found from its larger patch,
+    // whose search then need not allow for the largest radius of all. Cubes suit the common one.
+    const CubeIndex index(homes, cfg.max_gap + 2 * median_of(std::move(radii)), used, 1);
     const auto original = index.original_indices();
     // Regions in the index's order, -1 for regions absorbed as fragments: most homes within reach
     // are of the patch's own region, and this skips them before any distance.
@@ -217,10 +195,19 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
         const auto r = static_cast<std::uint32_t>(region[original[j]]);
         region_at[j] = region_members[r].empty() ? kNone : r;
     }
+    // Homes of one cube are mostly of one region: the end of each run of equal regions lets a
+    // search skip the patch's own region (and absorbed ones) a run at a time.
+    std::vector<std::uint32_t> run_end(index.size());
+    for (std::size_t j = index.size(); j-- > 0;)
+        run_end[j] = j + 1 < index.size() && region_at[j + 1] == region_at[j]
+                         ? run_end[j + 1]
+                         : static_cast<std::uint32_t>(j + 1);
     std::vector<std::vector<std::uint64_t>> found(static_cast<std::size_t>(threads));
 #pragma omp parallel num_threads(threads)
     {
         std::vector<std::uint64_t>& out = found[static_cast<std::size_t>(omp_get_thread_num())];
+        // The patch that last paired with each region: later homes of that region are skipped.
+        std::vector<std::size_t> paired_by(nr, surfaces.size());
 #pragma omp for schedule(dynamic, 256)
         for (std::size_t p = 0; p < surfaces.size(); ++p) {
             if (!used[p]) continue;
@@ -228,13 +215,18 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
             const auto ra = static_cast<std::uint32_t>(region[p]);
             if (region_members[ra].empty()) continue;
             for_each_home_near(
-                index, a.home, cfg.max_gap + a.radius + max_radius,
-                [&](std::uint32_t j) { return region_at[j] != ra && region_at[j] != kNone; },
+                index, a.home, cfg.max_gap + 2 * a.radius,
+                [&](std::uint32_t j) {
+                    const std::uint32_t r = region_at[j];
+                    return r != ra && r != kNone && paired_by[r] != p ? j : run_end[j];
+                },
                 [&](std::uint32_t j) {
                     const Surface& b = surfaces[original[j]];
-                    if ((b.home - a.home).norm() - a.radius - b.radius > cfg.max_gap) return;
-                    const std::uint64_t key = pair_key(ra, region_at[j]);
-                    if (out.empty() || out.back() != key) out.push_back(key);
+                    if (b.radius > a.radius ||
+                        (b.home - a.home).norm() - a.radius - b.radius > cfg.max_gap)
+                        return;
+                    paired_by[region_at[j]] = p;
+                    out.push_back(pair_key(ra, region_at[j]));
                 });
         }
     }
@@ -310,7 +302,7 @@ void check_grow_result(const CloudView& cloud, std::span<const Surface> surfaces
 // The moments of each patch's member points (accumulated about its home point); `used` marks the
 // patches with members. Returns the median patch thickness sqrt(lambda_min): the cloud's noise.
 double patch_moments(std::span<const Vec3f> points, std::span<const Surface> surfaces,
-                     const Members& members, std::vector<CentredMoments>& moments,
+                     const PatchMembers& members, std::vector<CentredMoments>& moments,
                      std::vector<std::uint8_t>& used) {
     std::vector<double> thickness;
     for (std::size_t s = 0; s < surfaces.size(); ++s) {
@@ -373,7 +365,7 @@ struct Regions {
 
 // Region growing over the patch graph, seeds by decreasing member count: a neighbour joins when
 // it is coplanar with the patch that reached it and with the region's pooled plane so far.
-Regions grow_regions(std::span<const Surface> surfaces, const Members& members,
+Regions grow_regions(std::span<const Surface> surfaces, const PatchMembers& members,
                      const std::vector<CentredMoments>& moments,
                      const std::vector<std::uint8_t>& used, const PatchGraph& graph,
                      const BoundPlaneConfig& cfg) {
@@ -440,7 +432,7 @@ Regions grow_regions(std::span<const Surface> surfaces, const Members& members,
 // A region's bound plane: the least-squares plane of its members' points, refitted to its inliers,
 // oriented by its patches' normals, with its frame, bounds and boundary polygons.
 BoundPlane fit_region(std::span<const Vec3f> cloud_points, std::span<const Surface> surfaces,
-                      const Members& members, const std::vector<CentredMoments>& moments,
+                      const PatchMembers& members, const std::vector<CentredMoments>& moments,
                       const std::vector<std::uint32_t>& list, const CentredMoments& all,
                       const BoundPlaneConfig& cfg) {
     BoundPlane plane;
@@ -599,7 +591,7 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
     out.stats.patches = ns;
 
     // Member points and their moments per patch; the defaults that depend on the noise.
-    const Members members = collect_members(cloud.points, labels, ns);
+    const PatchMembers members = collect_patch_members(cloud.points, labels, ns);
     std::vector<CentredMoments> moments(ns);
     std::vector<std::uint8_t> used(ns, 0);
     out.stats.noise = patch_moments(cloud.points, surfaces, members, moments, used);
@@ -608,7 +600,7 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
 
     // Patch graph, regions of coplanar patches, fragments absorbed and gaps bridged.
     const auto pairs =
-        adjacent_patch_pairs(cloud.points, labels, surfaces, used, cfg.adjacency, threads);
+        adjacent_patch_pairs(cloud.points, members, surfaces, used, cfg.adjacency, threads);
     out.stats.adjacent_pairs = pairs.size();
     const PatchGraph graph = patch_graph(pairs, ns);
     Regions regions = grow_regions(surfaces, members, moments, used, graph, cfg);

@@ -3,15 +3,10 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <array>
-
-#include "surfgrow/core/detail/bulk_allocator.hpp"
-#include "surfgrow/core/detail/neighbourhood.hpp"
+#include <cmath>
+#include <limits>
 
 namespace surfgrow {
-
-// The neighbourhood kernels and bulk arrays of the core, for the index over seam points.
-using namespace detail;
 
 std::vector<std::uint64_t> merged_unique(
     std::initializer_list<const std::vector<std::vector<std::uint64_t>>*> sources) {
@@ -23,94 +18,147 @@ std::vector<std::uint64_t> merged_unique(
     return all;
 }
 
-// Adjacency of patches: member points within `reach` of each other, or home points within the
-// sum of the radii. Sorted, unique pairs (a < b). The search runs in parallel over batches of
-// cubes; each batch keeps its pairs sorted and unique, and the final sort makes the result
-// independent of the thread count.
-std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_patch_pairs(
-    std::span<const Vec3f> points, std::span<const std::int32_t> labels,
-    std::span<const Surface> surfaces, const std::vector<std::uint8_t>& used, double reach,
-    int threads) {
-    std::vector<std::uint8_t> include(points.size(), 0);
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::size_t i = 0; i < points.size(); ++i)
-        include[i] = labels[i] >= 0 && used[static_cast<std::size_t>(labels[i])] ? 1 : 0;
-    const CubeIndex index(points, 2 * reach, include, threads);
-    release(include);
-    std::vector<std::int32_t> label(index.size() + CubeIndex::kPadding, -1);  // SIMD-readable
+namespace {
+
+// An axis-aligned box in double: exact bounds of float points.
+struct Box {
+    Vec3d lo = Vec3d::Constant(std::numeric_limits<double>::max());
+    Vec3d hi = Vec3d::Constant(std::numeric_limits<double>::lowest());
+};
+
+bool near_on_axis(const Box& a, const Box& b, int axis, double pad) {
+    return b.lo[axis] - a.hi[axis] <= pad && a.lo[axis] - b.hi[axis] <= pad;
+}
+
+// What a pair test may reuse between calls on one thread.
+struct Scratch {
+    std::vector<Vec3d> near_a, near_b;
+};
+
+// The keys of the pairs of boxes among those `use` marks that lie within `pad` of each other on
+// every axis and that `touch(a, b, scratch)` accepts, one list per thread. Such boxes' centres
+// are within 2 e + pad of each other on every axis, e the larger box's largest half extent: so
+// each pair is sought from its larger box, over an index of the centres whose cubes suit the
+// common size. A margin keeps the search from deciding a tie; the box test and `touch` decide.
+template <class Touch>
+std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Box>& box,
+                                                       const std::vector<std::uint8_t>& use,
+                                                       double pad, int threads, Touch&& touch) {
+    const std::size_t n = box.size();
+    std::vector<Vec3f> centre(n, Vec3f::Zero());
+    std::vector<double> half(n, 0.0), halves;
+    for (std::size_t s = 0; s < n; ++s) {
+        if (!use[s]) continue;
+        centre[s] = ((box[s].lo + box[s].hi) / 2).cast<float>();
+        half[s] = ((box[s].hi - box[s].lo) / 2).maxCoeff();
+        halves.push_back(half[s]);
+    }
+    std::vector<std::vector<std::uint64_t>> found(static_cast<std::size_t>(threads));
+    if (halves.empty()) return found;
+    std::nth_element(halves.begin(), halves.begin() + halves.size() / 2, halves.end());
+    double side = 2 * halves[halves.size() / 2] + pad;
+    if (!(side > 0)) side = 1;  // boxes that are points, touching only when they coincide
+    const CubeIndex index(centre, side, use, 1);
     const auto original = index.original_indices();
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::size_t i = 0; i < index.size(); ++i) label[i] = labels[original[i]];
-    const float r2 = static_cast<float>(reach * reach);
-    constexpr std::size_t kBatch = 4096;  // cubes per neighbour-table sweep: bounded memory
-    const std::size_t batches = (index.cube_count() + kBatch - 1) / kBatch;
-    std::vector<std::vector<std::uint64_t>> found(batches);
+    pad = pad * (1 + 1e-9) + side * 1e-12;
 #pragma omp parallel num_threads(threads)
     {
-        std::vector<CubeIndex::Range> table;
-#pragma omp for schedule(dynamic, 1)
-        for (std::size_t b = 0; b < batches; ++b) {
-            const std::size_t c0 = b * kBatch, c1 = std::min(index.cube_count(), c0 + kBatch);
-            index.neighbour_table(c0, c1, table);
-            std::vector<std::uint64_t>& out = found[b];
-            for (std::size_t c = c0; c < c1; ++c) {
-                const std::size_t cube_first = out.size();
-                const CubeIndex::Range* runs = &table[9 * (c - c0)];
-                for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
-                    std::array<CubeIndex::Range, 9> after;  // each pair once: j > i
-                    for (std::size_t k = 0; k < 9; ++k)
-                        after[k] = {std::max(runs[k].begin, i + 1), std::max(runs[k].end, i + 1)};
-                    const auto li = static_cast<std::uint32_t>(label[i]);
-                    for_each_other_in_runs_within(
-                        index, after, index.local_point(i), r2, label.data(), label[i],
-                        [&](std::uint32_t j) {
-                            const std::uint64_t kj =
-                                pair_key(li, static_cast<std::uint32_t>(label[j]));
-                            if (out.size() == cube_first || out.back() != kj) out.push_back(kj);
-                        });
-                }
-                // Unique per cube (short lists to sort), then per batch, in parallel: the final
-                // serial sort then has far fewer keys.
-                const auto first = out.begin() + static_cast<std::ptrdiff_t>(cube_first);
-                std::sort(first, out.end());
-                out.erase(std::unique(first, out.end()), out.end());
-            }
-            std::sort(out.begin(), out.end());
-            out.erase(std::unique(out.begin(), out.end()), out.end());
-        }
-    }
-    // Home points within the sum of the radii.
-    std::vector<Vec3f> homes(surfaces.size());
-    double max_radius = 0;
-    for (std::size_t s = 0; s < surfaces.size(); ++s) {
-        homes[s] = surfaces[s].home.cast<float>();
-        if (used[s]) max_radius = std::max(max_radius, surfaces[s].radius);
-    }
-    std::vector<std::vector<std::uint64_t>> near_homes(static_cast<std::size_t>(threads));
-    if (max_radius > 0) {
-        const CubeIndex hindex(homes, 2 * max_radius, used, 1);
-        const auto home_of = hindex.original_indices();
-#pragma omp parallel num_threads(threads)
-        {
-            std::vector<std::uint64_t>& out =
-                near_homes[static_cast<std::size_t>(omp_get_thread_num())];
+        std::vector<std::uint64_t>& out = found[static_cast<std::size_t>(omp_get_thread_num())];
+        Scratch scratch;
 #pragma omp for schedule(dynamic, 256)
-            for (std::size_t s = 0; s < surfaces.size(); ++s) {
-                if (!used[s]) continue;
-                const Surface& a = surfaces[s];
-                // Each pair once (t > s).
-                for_each_home_near(
-                    hindex, a.home, a.radius + max_radius,
-                    [&](std::uint32_t j) { return home_of[j] > s; },
-                    [&](std::uint32_t j) {
-                        const std::uint32_t t = home_of[j];
-                        if ((surfaces[t].home - a.home).norm() <= a.radius + surfaces[t].radius)
-                            out.push_back(pair_key(static_cast<std::uint32_t>(s), t));
-                    });
-            }
+        for (std::size_t a = 0; a < n; ++a) {
+            if (!use[a]) continue;
+            const double reach = (2 * half[a] + pad) * (1 + 1e-9);
+            const int ring = std::max(1, static_cast<int>(std::ceil(reach / side)));
+            index.for_each_column_run(
+                index.coords_of(index.to_local(centre[a].cast<double>())), ring,
+                [&](const CubeIndex::Range& run) {
+                    for (std::uint32_t j = run.begin; j < run.end; ++j) {
+                        const std::uint32_t b = original[j];
+                        // Each pair once: from the larger box, or the lower id of equal ones.
+                        if (half[b] > half[a] || (half[b] == half[a] && b <= a)) continue;
+                        if (near_on_axis(box[a], box[b], 0, pad) &&
+                            near_on_axis(box[a], box[b], 1, pad) &&
+                            near_on_axis(box[a], box[b], 2, pad) &&
+                            touch(static_cast<std::uint32_t>(a), b, scratch))
+                            out.push_back(pair_key(static_cast<std::uint32_t>(a), b));
+                    }
+                });
         }
     }
-    const std::vector<std::uint64_t> packed = merged_unique({&found, &near_homes});
+    return found;
+}
+
+// The members among `idx` within `pad` of box `other` on every axis, into `out`.
+void members_near(std::span<const Vec3f> points, std::span<const std::uint32_t> idx,
+                  const Box& other, double pad, std::vector<Vec3d>& out) {
+    out.clear();
+    const Vec3d lo = other.lo.array() - pad, hi = other.hi.array() + pad;
+    for (const std::uint32_t i : idx) {
+        const Vec3d p = points[i].cast<double>();
+        if ((p.array() >= lo.array()).all() && (p.array() <= hi.array()).all()) out.push_back(p);
+    }
+}
+
+// Whether a point of `a` lies within `reach` of a point of `b`. Two large interlocking patches
+// (both faces of a thin plate) would cost n m pairs: there `b` is sorted on x and searched.
+bool any_within(std::vector<Vec3d>& a, std::vector<Vec3d>& b, double reach) {
+    const double r2 = reach * reach;
+    if (a.size() * b.size() <= 256) {
+        for (const Vec3d& p : a)
+            for (const Vec3d& q : b)
+                if ((p - q).squaredNorm() <= r2) return true;
+        return false;
+    }
+    if (b.size() < a.size()) std::swap(a, b);
+    std::sort(b.begin(), b.end(), [](const Vec3d& p, const Vec3d& q) { return p.x() < q.x(); });
+    for (const Vec3d& p : a) {
+        auto q = std::lower_bound(b.begin(), b.end(), p.x() - reach,
+                                  [](const Vec3d& v, double x) { return v.x() < x; });
+        for (; q != b.end() && q->x() <= p.x() + reach; ++q)
+            if ((p - *q).squaredNorm() <= r2) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+// Adjacency of patches: member points within `reach` of each other, or home points within the
+// sum of the radii. Members can only touch where their patches' boxes lie within `reach`, homes
+// only where the boxes of their balls meet: a sweep over the boxes finds those pairs (a few per
+// patch), and only then are members near the other's box compared. Sorted, unique pairs
+// (a < b); the final sort makes the result independent of the thread count.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_patch_pairs(
+    std::span<const Vec3f> points, const PatchMembers& members, std::span<const Surface> surfaces,
+    const std::vector<std::uint8_t>& used, double reach, int threads) {
+    const std::size_t ns = surfaces.size();
+    std::vector<Box> box(ns), ball(ns);
+    std::vector<std::uint8_t> with_members(ns, 0);
+    for (std::size_t s = 0; s < ns; ++s) {
+        if (!used[s] || members.of(s).empty()) continue;
+        with_members[s] = 1;
+        for (const std::uint32_t i : members.of(s)) {
+            const Vec3d p = points[i].cast<double>();
+            box[s].lo = box[s].lo.cwiseMin(p);
+            box[s].hi = box[s].hi.cwiseMax(p);
+        }
+        ball[s] = {surfaces[s].home.array() - surfaces[s].radius,
+                   surfaces[s].home.array() + surfaces[s].radius};
+    }
+    const auto homes_within_radii = [&](std::uint32_t a, std::uint32_t b, Scratch&) {
+        return (surfaces[b].home - surfaces[a].home).norm() <=
+               surfaces[a].radius + surfaces[b].radius;
+    };
+    const auto near_homes = near_box_pairs(ball, with_members, 0.0, threads, homes_within_radii);
+    const auto touching = near_box_pairs(
+        box, with_members, reach, threads, [&](std::uint32_t a, std::uint32_t b, Scratch& scratch) {
+            if (homes_within_radii(a, b, scratch)) return false;  // the other rule has it
+            members_near(points, members.of(a), box[b], reach, scratch.near_a);
+            if (scratch.near_a.empty()) return false;
+            members_near(points, members.of(b), box[a], reach, scratch.near_b);
+            return !scratch.near_b.empty() && any_within(scratch.near_a, scratch.near_b, reach);
+        });
+    const std::vector<std::uint64_t> packed = merged_unique({&touching, &near_homes});
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs(packed.size());
     for (std::size_t k = 0; k < packed.size(); ++k)
         pairs[k] = {static_cast<std::uint32_t>(packed[k] >> 32),

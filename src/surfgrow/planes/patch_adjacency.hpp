@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <initializer_list>
 #include <span>
@@ -12,6 +13,7 @@
 #include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/geometry.hpp"
 #include "surfgrow/core/surface.hpp"
+#include "surfgrow/planes/patch_members.hpp"
 
 namespace surfgrow {
 
@@ -24,22 +26,29 @@ namespace surfgrow {
 [[nodiscard]] std::vector<std::uint64_t> merged_unique(
     std::initializer_list<const std::vector<std::vector<std::uint64_t>>*> sources);
 
-/// Calls f(j) for each home j of `index` (built over home points with cube side >= reach) that
-/// `keep(j)` admits and that lies within `reach` of `home`: keep, cheap and mostly false (the
-/// same region, an earlier patch), is asked before any distance.
-template <class Keep, class F>
-void for_each_home_near(const CubeIndex& index, const Vec3d& home, double reach, Keep&& keep,
+/// Calls f(j) for each home j of `index` (an index over home points) that lies within `reach`
+/// of `home` and that `next` admits: `next(j)` returns j to test it, or the
+/// first later index worth a test (skipping, say, a run of homes of the patch's own region)
+/// before any distance is computed.
+template <class Next, class F>
+void for_each_home_near(const CubeIndex& index, const Vec3d& home, double reach, Next&& next,
                         F&& f) {
     const Vec3f h = index.to_local(home);
     const auto r2 = static_cast<float>(reach * reach);
     const float* X = index.xs();
     const float* Y = index.ys();
     const float* Z = index.zs();
-    index.for_each_column_run(index.coords_of(h), 1, [&](const CubeIndex::Range& run) {
-        for (std::uint32_t j = run.begin; j < run.end; ++j) {
-            if (!keep(j)) continue;
+    const int ring = std::max(1, static_cast<int>(std::ceil(reach / index.cube_size())));
+    index.for_each_column_run(index.coords_of(h), ring, [&](const CubeIndex::Range& run) {
+        for (std::uint32_t j = run.begin; j < run.end;) {
+            const std::uint32_t k = next(j);
+            if (k != j) {
+                j = std::max(k, j + 1);
+                continue;
+            }
             const float dx = X[j] - h.x(), dy = Y[j] - h.y(), dz = Z[j] - h.z();
             if (dx * dx + dy * dy + dz * dz <= r2) f(j);
+            ++j;
         }
     });
 }
@@ -48,8 +57,7 @@ void for_each_home_near(const CubeIndex& index, const Vec3d& home, double reach,
 /// sum of the radii. Sorted, unique pairs (a < b); the same for any thread count. `used[s]`: the
 /// surface has member points.
 [[nodiscard]] std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_patch_pairs(
-    std::span<const Vec3f> points, std::span<const std::int32_t> labels,
-    std::span<const Surface> surfaces, const std::vector<std::uint8_t>& used, double reach,
-    int threads);
+    std::span<const Vec3f> points, const PatchMembers& members, std::span<const Surface> surfaces,
+    const std::vector<std::uint8_t>& used, double reach, int threads);
 
 }  // namespace surfgrow

@@ -1,0 +1,29 @@
+// Which points each patch holds: the member lists bound planes, their adjacency and fragments
+// read, built once from the grow labels.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "surfgrow/core/geometry.hpp"
+
+namespace surfgrow {
+
+/// Member points of each surface in input order, as CSR offsets and indices. Points with a
+/// non-finite coordinate belong to no surface here.
+struct PatchMembers {
+    std::vector<std::uint32_t> offset;  ///< surfaces + 1
+    std::vector<std::uint32_t> index;   ///< point indices, surface by surface
+    [[nodiscard]] std::span<const std::uint32_t> of(std::size_t s) const {
+        return {index.data() + offset[s], offset[s + 1] - offset[s]};
+    }
+    [[nodiscard]] std::size_t surfaces() const { return offset.empty() ? 0 : offset.size() - 1; }
+};
+
+/// The members of `surfaces` surfaces from labels (-1: none; every label < surfaces).
+[[nodiscard]] PatchMembers collect_patch_members(std::span<const Vec3f> points,
+                                                 std::span<const std::int32_t> labels,
+                                                 std::size_t surfaces);
+
+}  // namespace surfgrow

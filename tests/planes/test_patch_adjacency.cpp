@@ -1,0 +1,139 @@
+// The patch graph against brute force: every pair of member points within reach, every pair of
+// homes within the sum of their radii, and nothing else, for any thread count.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "surfgrow/planes/patch_adjacency.hpp"
+#include "surfgrow/planes/patch_members.hpp"
+
+namespace surfgrow {
+namespace {
+
+using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
+struct Patches {
+    std::vector<Vec3f> points;
+    std::vector<std::int32_t> labels;
+    std::vector<Surface> surfaces;
+    std::vector<std::uint8_t> used;
+};
+
+// Points on the two faces of a plate `thickness` thick and on a wall across it, cut into patches
+// around random homes (each point to the nearest home within 40 mm, else none), with radii from
+// 5 to 60 mm: small mosaics, large interlocking patches, patches with no members, labels -1, a
+// NaN point.
+Patches random_patches(std::uint64_t seed, double thickness) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    Patches p;
+    for (int i = 0; i < 6000; ++i) {
+        const double x = u(rng) * 0.4, y = u(rng) * 0.3;
+        switch (i % 3) {
+            case 0:
+                p.points.emplace_back(x, y, 0);
+                break;
+            case 1:
+                p.points.emplace_back(x, y, thickness);
+                break;
+            default:
+                p.points.emplace_back(0.2, y, 0.3 * u(rng));
+                break;
+        }
+    }
+    p.points.emplace_back(std::numeric_limits<float>::quiet_NaN(), 0.f, 0.f);
+    const int n = 300;
+    for (int s = 0; s < n; ++s) {
+        Surface f;
+        f.home = p.points[static_cast<std::size_t>(u(rng) * 6000)].cast<double>();
+        f.radius = 0.005 + 0.055 * std::pow(u(rng), 3);
+        p.surfaces.push_back(f);
+    }
+    for (const Vec3f& q : p.points) {
+        std::int32_t best = -1;
+        double d_best = 0.04;
+        for (int s = 0; s < n; ++s) {
+            // Every 7th surface takes no points; the rest by distance to their home.
+            if (s % 7 == 0) continue;
+            const double d =
+                (p.surfaces[static_cast<std::size_t>(s)].home - q.cast<double>()).norm();
+            if (d < d_best) d_best = d, best = s;
+        }
+        p.labels.push_back(std::isfinite(q.x()) ? best : 3);
+    }
+    p.used.assign(static_cast<std::size_t>(n), 0);
+    for (std::size_t i = 0; i + 1 < p.points.size(); ++i)
+        if (p.labels[i] >= 0) p.used[static_cast<std::size_t>(p.labels[i])] = 1;
+    return p;
+}
+
+Pairs brute_force(const Patches& p, double reach) {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> out;
+    auto add = [&](std::int32_t a, std::int32_t b) {
+        const auto x = static_cast<std::uint32_t>(a), y = static_cast<std::uint32_t>(b);
+        out.insert({std::min(x, y), std::max(x, y)});
+    };
+    for (std::size_t i = 0; i < p.points.size(); ++i)
+        for (std::size_t j = i + 1; j < p.points.size(); ++j) {
+            const std::int32_t a = p.labels[i], b = p.labels[j];
+            if (a < 0 || b < 0 || a == b || !is_finite(p.points[i]) || !is_finite(p.points[j]))
+                continue;
+            if ((p.points[i].cast<double>() - p.points[j].cast<double>()).norm() <= reach)
+                add(a, b);
+        }
+    for (std::size_t a = 0; a < p.surfaces.size(); ++a)
+        for (std::size_t b = a + 1; b < p.surfaces.size(); ++b)
+            if (p.used[a] && p.used[b] &&
+                (p.surfaces[a].home - p.surfaces[b].home).norm() <=
+                    p.surfaces[a].radius + p.surfaces[b].radius)
+                add(static_cast<std::int32_t>(a), static_cast<std::int32_t>(b));
+    return {out.begin(), out.end()};
+}
+
+TEST(PatchAdjacency, EqualsBruteForceForAnyThreadCount) {
+    for (const double thickness : {0.004, 0.02}) {
+        for (const std::uint64_t seed : {1u, 2u}) {
+            const Patches p = random_patches(seed, thickness);
+            const PatchMembers members =
+                collect_patch_members(p.points, p.labels, p.surfaces.size());
+            for (const double reach : {0.003, 0.006, 0.015}) {
+                const Pairs truth = brute_force(p, reach);
+                ASSERT_GT(truth.size(), 300u);  // the test has pairs of both kinds to find
+                for (const int threads : {1, 3}) {
+                    const Pairs got =
+                        adjacent_patch_pairs(p.points, members, p.surfaces, p.used, reach, threads);
+                    EXPECT_EQ(got, truth) << "plate " << thickness << ", seed " << seed
+                                          << ", reach " << reach << ", " << threads << " threads";
+                }
+            }
+        }
+    }
+}
+
+TEST(PatchAdjacency, MembersAloneMakeNeighboursAcrossAnyHomeDistance) {
+    // Two long strips meeting end to end: their homes far apart, their ends 2 mm apart.
+    Patches p;
+    for (int i = 0; i <= 100; ++i) {
+        p.points.emplace_back(0.001f * static_cast<float>(i), 0.f, 0.f);
+        p.labels.push_back(0);
+        p.points.emplace_back(0.102f + 0.001f * static_cast<float>(i), 0.f, 0.f);
+        p.labels.push_back(1);
+    }
+    p.surfaces.resize(2);
+    p.surfaces[0].home = Vec3d(0, 0, 0);
+    p.surfaces[1].home = Vec3d(0.202, 0, 0);
+    p.surfaces[0].radius = p.surfaces[1].radius = 0.01;
+    p.used = {1, 1};
+    const PatchMembers members = collect_patch_members(p.points, p.labels, 2);
+    EXPECT_EQ(adjacent_patch_pairs(p.points, members, p.surfaces, p.used, 0.0021, 1),
+              (Pairs{{0, 1}}));
+    EXPECT_TRUE(adjacent_patch_pairs(p.points, members, p.surfaces, p.used, 0.0019, 1).empty());
+}
+
+}  // namespace
+}  // namespace surfgrow
