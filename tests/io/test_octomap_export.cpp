@@ -154,6 +154,34 @@ TEST(OctomapExport, FreeBetweenScannerAndWallsUnknownBehindThem) {
     EXPECT_EQ(tree.search(behind.x(), behind.y(), behind.z()), nullptr);
 }
 
+TEST(OctomapExport, FreeLeavesAreExactlyOctomapsRaysLessTheOccupiedAndEndLeaves) {
+    // The contract, computed with liboctomap itself: the union of computeRayKeys from the scan
+    // origin to the centre of each grown point's leaf, less the occupied leaves and the end
+    // leaves. surfgrow walks the rays itself; this holds it to OctoMap's leaves.
+    const RoomCorner& rc = room_corner();
+    const octomap::OcTree tree = load(export_bt(rc, sensor_origins(rc.cloud, rc.config)));
+    const std::vector<std::uint8_t> mask = grown_point_mask(rc.cloud, rc.config);
+    const octomap::point3d from(static_cast<float>(rc.origin.x()),
+                                static_cast<float>(rc.origin.y()),
+                                static_cast<float>(rc.origin.z()));
+    std::set<KeyTuple> ends, crossed;
+    octomap::KeyRay ray;
+    for (std::size_t i = 0; i < rc.cloud.size(); ++i) {
+        if (!mask.empty() && !mask[i]) continue;
+        const Vec3f& p = rc.cloud.points[i];
+        const octomap::OcTreeKey end = tree.coordToKey(p.x(), p.y(), p.z());
+        if (!ends.insert({end[0], end[1], end[2]}).second) continue;
+        ASSERT_TRUE(tree.computeRayKeys(from, tree.keyToCoord(end), ray));
+        for (const octomap::OcTreeKey& k : ray) crossed.insert({k[0], k[1], k[2]});
+    }
+    const std::set<KeyTuple> occupied = leaves(tree, true);
+    std::set<KeyTuple> expected;
+    for (const KeyTuple& k : crossed)
+        if (!occupied.count(k) && !ends.count(k)) expected.insert(k);
+    ASSERT_GT(expected.size(), 10000u);
+    EXPECT_EQ(leaves(tree, false), expected);
+}
+
 TEST(OctomapExport, WithoutOriginsOnlyOccupiedCells) {
     const RoomCorner& rc = room_corner();
     io::OctomapSummary summary;
