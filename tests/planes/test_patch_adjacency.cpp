@@ -26,8 +26,8 @@ struct Patches {
 
 // Points on the two faces of a plate `thickness` thick and on a wall across it, cut into patches
 // around random homes (each point to the nearest home within 40 mm, else none), with radii from
-// 5 to 60 mm: small mosaics, large interlocking patches, patches with no members, labels -1, a
-// NaN point.
+// 5 to 60 mm: small mosaics, large interlocking patches, patches with no members, one patch
+// scattered over everything, labels -1, a NaN point.
 Patches random_patches(std::uint64_t seed, double thickness) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
@@ -66,7 +66,13 @@ Patches random_patches(std::uint64_t seed, double thickness) {
         }
         p.labels.push_back(std::isfinite(q.x()) ? best : 3);
     }
-    p.used.assign(static_cast<std::size_t>(n), 0);
+    // One patch scattered over the whole cloud: its box searches everything.
+    Surface scattered;
+    scattered.home = Vec3d(0.2, 0.15, 0.1);
+    scattered.radius = 0.01;
+    p.surfaces.push_back(scattered);
+    for (std::size_t i = 0; i + 1 < p.points.size(); i += 97) p.labels[i] = n;
+    p.used.assign(p.surfaces.size(), 0);
     for (std::size_t i = 0; i + 1 < p.points.size(); ++i)
         if (p.labels[i] >= 0) p.used[static_cast<std::size_t>(p.labels[i])] = 1;
     return p;

@@ -69,21 +69,21 @@ std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Box>& b
         for (std::size_t a = 0; a < n; ++a) {
             if (!use[a]) continue;
             const double reach = (2 * half[a] + pad) * (1 + 1e-9);
-            const int ring = std::max(1, static_cast<int>(std::ceil(reach / side)));
-            index.for_each_column_run(
-                index.coords_of(index.to_local(centre[a].cast<double>())), ring,
-                [&](const CubeIndex::Range& run) {
-                    for (std::uint32_t j = run.begin; j < run.end; ++j) {
-                        const std::uint32_t b = original[j];
-                        // Each pair once: from the larger box, or the lower id of equal ones.
-                        if (half[b] > half[a] || (half[b] == half[a] && b <= a)) continue;
-                        if (near_on_axis(box[a], box[b], 0, pad) &&
-                            near_on_axis(box[a], box[b], 1, pad) &&
-                            near_on_axis(box[a], box[b], 2, pad) &&
-                            touch(static_cast<std::uint32_t>(a), b, scratch))
-                            out.push_back(pair_key(static_cast<std::uint32_t>(a), b));
-                    }
-                });
+            for_each_run_near(index, index.to_local(centre[a].cast<double>()), reach,
+                              [&](const CubeIndex::Range& run) {
+                                  for (std::uint32_t j = run.begin; j < run.end; ++j) {
+                                      const std::uint32_t b = original[j];
+                                      // Each pair once: from the larger box, or the lower id of
+                                      // equal ones.
+                                      if (half[b] > half[a] || (half[b] == half[a] && b <= a))
+                                          continue;
+                                      if (near_on_axis(box[a], box[b], 0, pad) &&
+                                          near_on_axis(box[a], box[b], 1, pad) &&
+                                          near_on_axis(box[a], box[b], 2, pad) &&
+                                          touch(static_cast<std::uint32_t>(a), b, scratch))
+                                          out.push_back(pair_key(static_cast<std::uint32_t>(a), b));
+                                  }
+                              });
         }
     }
     return found;

@@ -26,6 +26,21 @@ namespace surfgrow {
 [[nodiscard]] std::vector<std::uint64_t> merged_unique(
     std::initializer_list<const std::vector<std::vector<std::uint64_t>>*> sources);
 
+/// Calls f(run) for runs of `index` holding every point within `reach` (world units) of the local
+/// position `h`: the column runs of the cubes around it, or, where those columns would outnumber
+/// the index's cubes (a search as large as the cloud), every point in one run.
+template <class F>
+void for_each_run_near(const CubeIndex& index, const Vec3f& h, double reach, F&& f) {
+    // The margin makes a reach of exactly k cubes search k + 1: the cube side is enlarged by
+    // 2^-20 against float rounding, which a ratio rounded down could undo.
+    const double ring = std::max(1.0, std::ceil(reach / index.cube_size() * (1 + 1e-6)));
+    if ((2 * ring + 1) * (2 * ring + 1) > static_cast<double>(index.cube_count())) {
+        f(CubeIndex::Range{0, static_cast<std::uint32_t>(index.size())});
+        return;
+    }
+    index.for_each_column_run(index.coords_of(h), static_cast<int>(ring), f);
+}
+
 /// Calls f(j) for each home j of `index` (an index over home points) that lies within `reach`
 /// of `home` and that `next` admits: `next(j)` returns j to test it, or the
 /// first later index worth a test (skipping, say, a run of homes of the patch's own region)
@@ -38,8 +53,7 @@ void for_each_home_near(const CubeIndex& index, const Vec3d& home, double reach,
     const float* X = index.xs();
     const float* Y = index.ys();
     const float* Z = index.zs();
-    const int ring = std::max(1, static_cast<int>(std::ceil(reach / index.cube_size())));
-    index.for_each_column_run(index.coords_of(h), ring, [&](const CubeIndex::Range& run) {
+    for_each_run_near(index, h, reach, [&](const CubeIndex::Range& run) {
         for (std::uint32_t j = run.begin; j < run.end;) {
             const std::uint32_t k = next(j);
             if (k != j) {
