@@ -7,8 +7,6 @@
 #include <array>
 #include <atomic>
 #include <bit>
-#include <cmath>
-#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,49 +47,6 @@ octomap::OcTreeKey unpack(std::uint64_t v) {
                               static_cast<octomap::key_type>((v >> 32) & 0xffff));
 }
 
-// Calls f(key) for each leaf on the ray from `origin` to `end`, the end leaf excluded, as
-// OctoMap's computeRayKeys finds them (3D DDA after Amanatides & Woo, in its arithmetic: the same
-// leaves), as they are crossed rather than collected into a KeyRay. false where an end lies
-// beyond the key range.
-template <class F>
-bool for_each_ray_leaf(const octomap::OcTree& tree, const octomap::point3d& origin,
-                       const octomap::point3d& end, F&& f) {
-    octomap::OcTreeKey key, key_end;
-    if (!tree.coordToKeyChecked(origin, key) || !tree.coordToKeyChecked(end, key_end)) return false;
-    if (key == key_end) return true;
-    f(key);
-    octomap::point3d direction = end - origin;
-    const auto length = static_cast<float>(direction.norm());
-    direction /= length;
-    // OctoMap's own mix of float and double, spelled out.
-    const auto d = [&](int i) { return static_cast<double>(direction(i)); };
-    const auto o = [&](int i) { return static_cast<double>(origin(i)); };
-    const double resolution = tree.getResolution();
-    std::array<int, 3> step{};
-    std::array<double, 3> t_max{}, t_delta{};
-    for (int i = 0; i < 3; ++i) {
-        step[i] = direction(i) > 0 ? 1 : (direction(i) < 0 ? -1 : 0);
-        if (step[i] != 0) {
-            double border = tree.keyToCoord(key[i]);
-            border += static_cast<double>(static_cast<float>(step[i] * resolution * 0.5));
-            t_max[i] = (border - o(i)) / d(i);
-            t_delta[i] = resolution / std::fabs(d(i));
-        } else {
-            t_max[i] = t_delta[i] = std::numeric_limits<double>::max();
-        }
-    }
-    for (;;) {
-        const int dim =
-            t_max[0] < t_max[1] ? (t_max[0] < t_max[2] ? 0 : 2) : (t_max[1] < t_max[2] ? 1 : 2);
-        key[dim] = static_cast<octomap::key_type>(key[dim] + step[dim]);
-        t_max[dim] += t_delta[dim];
-        if (key == key_end) return true;
-        // Rounding can step past the end leaf: stop where the ray is longer than the segment.
-        if (std::min({t_max[0], t_max[1], t_max[2]}) > static_cast<double>(length)) return true;
-        f(key);
-    }
-}
-
 // A set of leaf keys within a box of keys: a bitmap when the box has at most 2^29 leaves (64 MiB),
 // else a vector sorted on demand. Rays from a scanner cross the same leaves again and again, so
 // the bitmap turns millions of hash-set insertions into bit operations.
@@ -107,10 +62,6 @@ class LeafSet {
         dense_ = volume <= (std::uint64_t{1} << 29);
         if (dense_) bits_.assign((volume + 63) / 64, 0);
     }
-    void insert(const octomap::OcTreeKey& key) { insert(pack(key)); }
-    void insert_shared(const octomap::OcTreeKey& key) {
-        insert_shared_at(index(key[0], key[1], key[2]));
-    }
     void insert(std::uint64_t key) {
         if (dense_) {
             const std::uint64_t i = index(key);
@@ -123,8 +74,8 @@ class LeafSet {
     [[nodiscard]] bool dense() const { return dense_; }
     // insert() for threads sharing a dense set: an atomic OR (a union: the same bits whatever
     // the order).
-    void insert_shared(std::uint64_t key) { insert_shared_at(index(key)); }
-    void insert_shared_at(std::uint64_t i) {
+    void insert_shared(std::uint64_t key) {
+        const std::uint64_t i = index(key);
         const std::uint64_t bit = std::uint64_t{1} << (i & 63);
         std::atomic_ref<std::uint64_t> word(bits_[i >> 6]);
         // Most leaves near a sensor are crossed by many rays: a plain read spares the locked OR.
@@ -185,10 +136,9 @@ class LeafSet {
         }
     }
     [[nodiscard]] std::uint64_t index(std::uint64_t key) const {
-        return index(key & 0xffff, (key >> 16) & 0xffff, key >> 32);
-    }
-    [[nodiscard]] std::uint64_t index(std::uint64_t x, std::uint64_t y, std::uint64_t z) const {
-        return (x - lo_[0]) + dims_[0] * ((y - lo_[1]) + dims_[1] * (z - lo_[2]));
+        const std::uint64_t x = (key & 0xffff) - lo_[0], y = ((key >> 16) & 0xffff) - lo_[1],
+                            z = (key >> 32) - lo_[2];
+        return x + dims_[0] * (y + dims_[1] * z);
     }
     std::array<std::uint64_t, 3> lo_{}, dims_{};
     bool dense_ = true;
@@ -228,11 +178,8 @@ OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
             if (!is_finite(cloud.points[i]) || (!ray_mask.empty() && !ray_mask[i])) continue;
             const Vec3d* o = origins.origin_of(cloud, i);
             if (!o) continue;
-            const std::pair<std::uint32_t, std::uint64_t> ray{
-                static_cast<std::uint32_t>(o - origins.origins.data()),
-                pack(key_of(tree, cloud.points[i].cast<double>(), "a point"))};
-            // Neighbours in scan order often end in the same leaf: fewer to sort.
-            if (rays.empty() || rays.back() != ray) rays.push_back(ray);
+            rays.emplace_back(static_cast<std::uint32_t>(o - origins.origins.data()),
+                              pack(key_of(tree, cloud.points[i].cast<double>(), "a point")));
         }
         std::sort(rays.begin(), rays.end());
         rays.erase(std::unique(rays.begin(), rays.end()), rays.end());
@@ -263,20 +210,20 @@ OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
             std::uint64_t cast = 0;
 #pragma omp parallel num_threads(team) if (team > 1 && n > 4096) reduction(+ : cast)
             {
+                octomap::KeyRay ray;
                 const bool shared = omp_get_num_threads() > 1;
 #pragma omp for schedule(dynamic, 1024)
                 for (std::ptrdiff_t r = 0; r < n; ++r) {
                     const auto& [o, end] = rays[static_cast<std::size_t>(r)];
-                    const octomap::point3d to = tree.keyToCoord(unpack(end));
-                    const bool in_range =
-                        shared ? for_each_ray_leaf(tree, from[o], to,
-                                                   [&](const octomap::OcTreeKey& key) {
-                                                       carved.insert_shared(key);
-                                                   })
-                               : for_each_ray_leaf(
-                                     tree, from[o], to,
-                                     [&](const octomap::OcTreeKey& key) { carved.insert(key); });
-                    if (in_range) ++cast;
+                    if (!tree.computeRayKeys(from[o], tree.keyToCoord(unpack(end)), ray)) continue;
+                    ++cast;
+                    for (const octomap::OcTreeKey& key : ray) {
+                        if (shared) {
+                            carved.insert_shared(pack(key));
+                        } else {
+                            carved.insert(pack(key));
+                        }
+                    }
                 }
             }
             summary.rays = cast;
