@@ -102,7 +102,7 @@ def main():
         s = r["stages"]
         print(f"{r['cloud']:16} {statistics.median(w2):8.3f} ({min(w2):.3f}-{max(w2):.3f}) "
               f"{statistics.median(w1):8.3f} {statistics.median(w1) / statistics.median(w2):7.2f}x "
-              f"{r['peak_mib']:8.0f} {r['output_bytes'] / r['input_bytes']:6.1f}x  "
+              f"{r['peak_mib']:8.0f} {r['output_bytes'] / r['input_bytes']:6.2f}x  "
               + " ".join(f"{k} {v:.3f}" for k, v in s.items()))
     print("targets: 2 threads >= 1.7x one; outputs no larger than the input (out/in <= 1); "
           "each robot output no slower than the growing")
