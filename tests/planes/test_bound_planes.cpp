@@ -282,6 +282,45 @@ TEST(BoundPlanes, PlaneLabelsFollowThePatches) {
     for (std::size_t k = 0; k < p.planes.size(); ++k) EXPECT_EQ(count[k], p.planes[k].point_count);
 }
 
+TEST(BoundPlanes, AGapIsBridgedFromTheLargerPatchOfAPair) {
+    // A plate of 25 small patches (radius 12 mm) and, 30 mm away in its plane, one large patch
+    // (radius 80 mm): a hand-made result. Their homes lie 18 mm beyond the sum of the radii, within
+    // the 60 mm gap, yet farther from the small patch than 60 mm + 2 x 12 mm: only a search from
+    // the large patch finds the pair.
+    PointCloud c;
+    std::vector<std::int32_t> labels;
+    for (int i = 0; i <= 135; ++i)
+        for (int j = 0; j <= 50; ++j) {
+            const double x = 0.002 * i, y = 0.002 * j;
+            if (x > 0.1 && x < 0.13) continue;
+            c.points.emplace_back(static_cast<float>(x), static_cast<float>(y), 0.f);
+            labels.push_back(x <= 0.1 ? std::min(4, int(x / 0.02)) + 5 * std::min(4, int(y / 0.02))
+                                      : 25);
+        }
+    std::vector<Surface> surfaces(26);
+    std::vector<Vec3d> sum(26, Vec3d::Zero());
+    std::vector<int> count(26, 0);
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        sum[static_cast<std::size_t>(labels[i])] += c.points[i].cast<double>();
+        ++count[static_cast<std::size_t>(labels[i])];
+    }
+    for (std::size_t s = 0; s < 26; ++s) {
+        Surface& f = surfaces[s];
+        f.centroid = sum[s] / count[s];
+        f.home = s < 25 ? f.centroid : Vec3d(0.2, 0.05, 0);
+        f.radius = s < 25 ? 0.012 : 0.08;
+        f.eigenvalues = Vec3d(1e-8, 1e-4, 1e-4);
+        f.point_count = static_cast<std::uint32_t>(count[s]);
+    }
+    ASSERT_GT((surfaces[25].home - surfaces[14].home).norm(), 0.06 + 2 * 0.012);
+    BoundPlaneConfig cfg;  // mu 12 mm: the gap 60 mm, the adjacency 6 mm
+    EXPECT_EQ(compute_bound_planes(c, surfaces, labels, cfg).planes.size(), 1u);
+    cfg.max_gap = 0.015;  // below the 18 mm between them
+    EXPECT_EQ(compute_bound_planes(c, surfaces, labels, cfg).planes.size(), 2u);
+    cfg.max_gap = -1;  // never bridge
+    EXPECT_EQ(compute_bound_planes(c, surfaces, labels, cfg).planes.size(), 2u);
+}
+
 TEST(BoundPlanes, EmptyResultGivesNoPlanes) {
     const BoundPlanes p = compute_bound_planes(PointCloud{}, GrowResult{}, BoundPlaneConfig{});
     EXPECT_TRUE(p.planes.empty());
