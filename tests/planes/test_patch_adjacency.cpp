@@ -28,23 +28,16 @@ struct Patches {
 // around random homes (each point to the nearest home within 40 mm, else none), with radii from
 // 5 to 60 mm: small mosaics, large interlocking patches, patches with no members, one patch
 // scattered over everything, labels -1, a NaN point.
-Patches random_patches(std::uint64_t seed, double thickness) {
+Patches random_patches(std::uint64_t seed, double thickness, const Vec3d& at) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     Patches p;
     for (int i = 0; i < 6000; ++i) {
         const double x = u(rng) * 0.4, y = u(rng) * 0.3;
-        switch (i % 3) {
-            case 0:
-                p.points.emplace_back(x, y, 0);
-                break;
-            case 1:
-                p.points.emplace_back(x, y, thickness);
-                break;
-            default:
-                p.points.emplace_back(0.2, y, 0.3 * u(rng));
-                break;
-        }
+        const Vec3d q = i % 3 == 0   ? Vec3d(x, y, 0)
+                        : i % 3 == 1 ? Vec3d(x, y, thickness)
+                                     : Vec3d(0.2, y, 0.3 * u(rng));
+        p.points.push_back((q + at).cast<float>());
     }
     p.points.emplace_back(std::numeric_limits<float>::quiet_NaN(), 0.f, 0.f);
     const int n = 300;
@@ -68,7 +61,7 @@ Patches random_patches(std::uint64_t seed, double thickness) {
     }
     // One patch scattered over the whole cloud: its box searches everything.
     Surface scattered;
-    scattered.home = Vec3d(0.2, 0.15, 0.1);
+    scattered.home = Vec3d(0.2, 0.15, 0.1) + at;
     scattered.radius = 0.01;
     p.surfaces.push_back(scattered);
     for (std::size_t i = 0; i + 1 < p.points.size(); i += 97) p.labels[i] = n;
@@ -102,9 +95,12 @@ Pairs brute_force(const Patches& p, double reach) {
 }
 
 TEST(PatchAdjacency, EqualsBruteForceForAnyThreadCount) {
+    // Near the origin, and 2 km from it, where float rounding (0.1 mm) is a visible share of
+    // the reach: the search in float must still find every pair the exact test keeps.
+    const Vec3d far(1500.0, -1300.0, 40.0);
     for (const double thickness : {0.004, 0.02}) {
-        for (const std::uint64_t seed : {1u, 2u}) {
-            const Patches p = random_patches(seed, thickness);
+        for (const std::uint64_t seed : {1u, 2u, 3u}) {
+            const Patches p = random_patches(seed, thickness, seed == 3 ? far : Vec3d::Zero());
             const PatchMembers members =
                 collect_patch_members(p.points, p.labels, p.surfaces.size());
             for (const double reach : {0.003, 0.006, 0.015}) {

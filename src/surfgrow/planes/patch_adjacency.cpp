@@ -61,6 +61,7 @@ std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Box>& b
     const CubeIndex index(centre, side, use, 1);
     const auto original = index.original_indices();
     pad = pad * (1 + 1e-9) + side * 1e-12;
+    const double slack = float_rounding_slack(index);  // the centres are floats
 #pragma omp parallel num_threads(threads)
     {
         std::vector<std::uint64_t>& out = found[static_cast<std::size_t>(omp_get_thread_num())];
@@ -68,7 +69,7 @@ std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Box>& b
 #pragma omp for schedule(dynamic, 256)
         for (std::size_t a = 0; a < n; ++a) {
             if (!use[a]) continue;
-            const double reach = (2 * half[a] + pad) * (1 + 1e-9);
+            const double reach = (2 * half[a] + pad) * (1 + 1e-9) + slack;
             for_each_run_near(index, index.to_local(centre[a].cast<double>()), reach,
                               [&](const CubeIndex::Range& run) {
                                   for (std::uint32_t j = run.begin; j < run.end; ++j) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
+#include <limits>
 #include <span>
 #include <utility>
 #include <vector>
@@ -25,6 +26,17 @@ namespace surfgrow {
 /// The keys of every part, sorted and unique: the same whatever the split into parts.
 [[nodiscard]] std::vector<std::uint64_t> merged_unique(
     std::initializer_list<const std::vector<std::vector<std::uint64_t>>*> sources);
+
+/// How far rounding to float can move the distance between two positions indexed by `index`
+/// (world coordinates in float, then made local): the margin a float search needs so that it
+/// never drops a pair the exact test in double would keep.
+[[nodiscard]] inline double float_rounding_slack(const CubeIndex& index) {
+    const Aabb& b = index.bounds();
+    if (b.empty()) return 0;
+    const double largest = std::max(b.min.cwiseAbs().maxCoeff(), b.max.cwiseAbs().maxCoeff());
+    return 4 * static_cast<double>(std::numeric_limits<float>::epsilon()) *
+           (largest + b.size().maxCoeff());
+}
 
 /// Calls f(run) for runs of `index` holding every point within `reach` (world units) of the local
 /// position `h`: the column runs of the cubes around it, or, where those columns would outnumber
@@ -49,6 +61,7 @@ template <class Next, class F>
 void for_each_home_near(const CubeIndex& index, const Vec3d& home, double reach, Next&& next,
                         F&& f) {
     const Vec3f h = index.to_local(home);
+    reach += float_rounding_slack(index);
     const auto r2 = static_cast<float>(reach * reach);
     const float* X = index.xs();
     const float* Y = index.ys();
