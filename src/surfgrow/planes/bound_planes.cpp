@@ -600,7 +600,7 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
 
     // Patch graph, regions of coplanar patches, fragments absorbed and gaps bridged.
     const auto pairs =
-        adjacent_patch_pairs(cloud.points, members, surfaces, used, cfg.adjacency, threads);
+        adjacent_patch_pairs(cloud.points, members, surfaces, cfg.adjacency, threads);
     out.stats.adjacent_pairs = pairs.size();
     const PatchGraph graph = patch_graph(pairs, ns);
     Regions regions = grow_regions(surfaces, members, moments, used, graph, cfg);

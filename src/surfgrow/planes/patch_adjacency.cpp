@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace surfgrow {
 
@@ -20,14 +19,9 @@ std::vector<std::uint64_t> merged_unique(
 
 namespace {
 
-// An axis-aligned box in double: exact bounds of float points.
-struct Box {
-    Vec3d lo = Vec3d::Constant(std::numeric_limits<double>::max());
-    Vec3d hi = Vec3d::Constant(std::numeric_limits<double>::lowest());
-};
-
-bool near_on_axis(const Box& a, const Box& b, int axis, double pad) {
-    return b.lo[axis] - a.hi[axis] <= pad && a.lo[axis] - b.hi[axis] <= pad;
+// Boxes are Aabbs in double: exact bounds of float points.
+bool near_on_axis(const Aabb& a, const Aabb& b, int axis, double pad) {
+    return b.min[axis] - a.max[axis] <= pad && a.min[axis] - b.max[axis] <= pad;
 }
 
 // What a pair test may reuse between calls on one thread.
@@ -41,7 +35,7 @@ struct Scratch {
 // each pair is sought from its larger box, over an index of the centres whose cubes suit the
 // common size. A margin keeps the search from deciding a tie; the box test and `touch` decide.
 template <class Touch>
-std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Box>& box,
+std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Aabb>& box,
                                                        const std::vector<std::uint8_t>& use,
                                                        double pad, int threads, Touch&& touch) {
     const std::size_t n = box.size();
@@ -49,8 +43,8 @@ std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Box>& b
     std::vector<double> half(n, 0.0), halves;
     for (std::size_t s = 0; s < n; ++s) {
         if (!use[s]) continue;
-        centre[s] = ((box[s].lo + box[s].hi) / 2).cast<float>();
-        half[s] = ((box[s].hi - box[s].lo) / 2).maxCoeff();
+        centre[s] = ((box[s].min + box[s].max) / 2).cast<float>();
+        half[s] = box[s].size().maxCoeff() / 2;
         halves.push_back(half[s]);
     }
     std::vector<std::vector<std::uint64_t>> found(static_cast<std::size_t>(threads));
@@ -92,12 +86,12 @@ std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Box>& b
 
 // The members among `idx` within `pad` of box `other` on every axis, into `out`.
 void members_near(std::span<const Vec3f> points, std::span<const std::uint32_t> idx,
-                  const Box& other, double pad, std::vector<Vec3d>& out) {
+                  const Aabb& other, double pad, std::vector<Vec3d>& out) {
     out.clear();
-    const Vec3d lo = other.lo.array() - pad, hi = other.hi.array() + pad;
+    const Aabb grown{other.min.array() - pad, other.max.array() + pad};
     for (const std::uint32_t i : idx) {
         const Vec3d p = points[i].cast<double>();
-        if ((p.array() >= lo.array()).all() && (p.array() <= hi.array()).all()) out.push_back(p);
+        if (grown.contains(p)) out.push_back(p);
     }
 }
 
@@ -131,18 +125,14 @@ bool any_within(std::vector<Vec3d>& a, std::vector<Vec3d>& b, double reach) {
 // (a < b); the final sort makes the result independent of the thread count.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_patch_pairs(
     std::span<const Vec3f> points, const PatchMembers& members, std::span<const Surface> surfaces,
-    const std::vector<std::uint8_t>& used, double reach, int threads) {
+    double reach, int threads) {
     const std::size_t ns = surfaces.size();
-    std::vector<Box> box(ns), ball(ns);
+    std::vector<Aabb> box(ns), ball(ns);
     std::vector<std::uint8_t> with_members(ns, 0);
     for (std::size_t s = 0; s < ns; ++s) {
-        if (!used[s] || members.of(s).empty()) continue;
+        if (members.of(s).empty()) continue;
         with_members[s] = 1;
-        for (const std::uint32_t i : members.of(s)) {
-            const Vec3d p = points[i].cast<double>();
-            box[s].lo = box[s].lo.cwiseMin(p);
-            box[s].hi = box[s].hi.cwiseMax(p);
-        }
+        for (const std::uint32_t i : members.of(s)) box[s].add(points[i].cast<double>());
         ball[s] = {surfaces[s].home.array() - surfaces[s].radius,
                    surfaces[s].home.array() + surfaces[s].radius};
     }

@@ -81,10 +81,10 @@ void for_each_home_near(const CubeIndex& index, const Vec3d& home, double reach,
 }
 
 /// Adjacency of patches: member points within `reach` of each other, or home points within the
-/// sum of the radii. Sorted, unique pairs (a < b); the same for any thread count. `used[s]`: the
-/// surface has member points.
+/// sum of the radii, among the surfaces with members. Sorted, unique pairs (a < b); the same for
+/// any thread count.
 [[nodiscard]] std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_patch_pairs(
     std::span<const Vec3f> points, const PatchMembers& members, std::span<const Surface> surfaces,
-    const std::vector<std::uint8_t>& used, double reach, int threads);
+    double reach, int threads);
 
 }  // namespace surfgrow

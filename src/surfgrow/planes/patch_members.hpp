@@ -18,7 +18,6 @@ struct PatchMembers {
     [[nodiscard]] std::span<const std::uint32_t> of(std::size_t s) const {
         return {index.data() + offset[s], offset[s + 1] - offset[s]};
     }
-    [[nodiscard]] std::size_t surfaces() const { return offset.empty() ? 0 : offset.size() - 1; }
 };
 
 /// The members of `surfaces` surfaces from labels (-1: none; every label < surfaces).
