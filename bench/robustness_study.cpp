@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -36,20 +37,19 @@ namespace {
 
 std::uint64_t pose_seed = 7;  // the pose errors: as the tests draw them
 
+// As tests/eval/test_builtin_scenes.cpp scans: three poses along the scene's scan path; one scan
+// is the middle one, three are fused with recorded poses 2 mm and 0.1 degree off, as a robot's are.
 PointCloud scan(const scanner::Scene& scene, double offset_m, int poses, std::uint64_t seed) {
     scanner::ScannerSpec spec;
     spec.optical_offset_m = Vec3d(0, 0, offset_m);
     const scanner::ScanSimulator sim(scene, spec);
     std::vector<scanner::RawScan> raws;
-    std::uint64_t k = 0;
-    for (auto& s : sim.simulate(scanner::scan_poses(scene.description().scanner, poses), seed)) {
-        // Fused with recorded poses 2 mm and 0.1 degree off, as a robot's are.
-        if (poses > 1)
-            s.raw.pose = scanner::perturb_pose(s.raw.pose, 0.002, scanner::deg_to_rad(0.1),
-                                               mix_seed(pose_seed, k));
-        ++k;
+    for (auto& s : sim.simulate(scanner::scan_poses(scene.description().scanner, 3), seed))
         raws.push_back(std::move(s.raw));
-    }
+    if (poses == 1) return scanner::fuse_scans(std::span<const scanner::RawScan>(&raws[1], 1));
+    for (std::size_t k = 0; k < raws.size(); ++k)
+        raws[k].pose = scanner::perturb_pose(raws[k].pose, 0.002, scanner::deg_to_rad(0.1),
+                                             mix_seed(pose_seed, k));
     return scanner::fuse_scans(raws);
 }
 
@@ -223,7 +223,13 @@ int main(int argc, char** argv) {
                         std::printf("        plane %d holds:", top);
                         for (auto [t, c] : comp)
                             if (c * 50 >= plane_size[top])
-                                std::printf(" face %d %.0f%%", t,
+                                std::printf(" face %d (%s) %.0f%%", t,
+                                            t < 0
+                                                ? "none"
+                                                : scene.description()
+                                                      .primitives[std::size_t(
+                                                          scene.faces()[std::size_t(t)].primitive)]
+                                                      .name.c_str(),
                                             100.0 * double(c) / double(plane_size[top]));
                         std::printf("\n");
                     }

@@ -39,7 +39,8 @@ void GrowOptions::add_to(CLI::App& cmd) {
     cmd.add_option("--pool-angle", pool_angle,
                    "Refine normals over adjacent surfaces within this angle, degrees (0: off)")
         ->capture_default_str();
-    cmd.add_flag("--no-attach", no_attach, "Skip the leftover pass (the paper's loop alone)");
+    cmd.add_flag("--no-attach", no_attach,
+                 "Skip the leftover pass and strips (the paper's loop alone)");
     add_seed_option(cmd, seed, "Random seed for home points (same seed, same output)");
     add_threads_option(cmd, threads,
                        "Worker threads, 0 = all cores (output does not depend on it)");

@@ -59,12 +59,13 @@ std::string stats_table(const GrowStats& s, const CloudUnits& units) {
     std::snprintf(
         buf, sizeof buf,
         "home points: %llu tried, %llu surfaces, %llu too sparse, %llu not planar, %llu covered; "
-        "%llu surfaces with an adapted radius\n",
+        "%llu surfaces with an adapted radius, %llu strips\n",
         static_cast<unsigned long long>(s.homes_tried), static_cast<unsigned long long>(s.surfaces),
         static_cast<unsigned long long>(s.rejected_sparse),
         static_cast<unsigned long long>(s.rejected_nonplanar),
         static_cast<unsigned long long>(s.rejected_covered),
-        static_cast<unsigned long long>(s.adapted_surfaces));
+        static_cast<unsigned long long>(s.adapted_surfaces),
+        static_cast<unsigned long long>(s.strip_surfaces));
     out += buf;
     if (s.range_known) {
         out += "registered by range from the sensor:\n";

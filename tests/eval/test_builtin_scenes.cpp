@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -105,12 +106,12 @@ constexpr double kMinFacesDetected = 0.9;  // SegComp correct detection, T = 0.8
 // gaps are in docs/algorithm.md, "What the disk test does not reach yet"): on fused scans, the
 // I-beam channel's 12-30 mm strips (stiffener ends, flange edges), narrower than mu resolves,
 // whose points the next face's surfaces take, and the pipes', whose cylinders meet the wall and
-// the floor in such strips; the channel's single scans' 1.5-2 m band, which is mostly the top
-// flanges' 30 mm inner edges between two depth edges (a quarter of it unregistered); and narrow
-// faces (the flange edges, a bolt head, the corridor's 10 mm shelf edge, the pipes' valve top in
-// the plane of a pipe's crown), whose planes hold 14-26 % points of no face or of the pipe. Single
-// scans meet the > 45 degree bound everywhere since mixed-pixel ramps are dropped (0.21-0.22 % on
-// the channel).
+// the floor in such strips; the channel's single scans' 1.5-2 m band, where the top flanges'
+// inner edges end: there a strip holds too few points to fix its normal within 4 degrees before
+// its ball reads as a line (97.9-98.4 %); and narrow faces (the flange edges, a bolt head, the
+// corridor's 10 mm shelf edge, the pipes' valve top in the plane of a pipe's crown), whose planes
+// hold 14-26 % points of no face or of the pipe. Single scans meet the > 45 degree bound everywhere
+// since mixed-pixel ramps are dropped (0.21-0.29 % on the channel).
 struct Held {
     double fused_over_45 = kMaxShareOver45;  // one scan: always kMaxShareOver45
     double faces = kMinFacesDetected;
@@ -120,8 +121,8 @@ Held held_to(const std::string& scene) {
     // The channel's fused > 45 degree share moves with the draw of the pose errors (0.43-0.75 %
     // for robustness_study --pose-seed 1..5) and with the platform's libm (aarch64: +0.3 %).
     if (scene == "ibeam-channel") return {0.009, 0.75, 0.975};
-    if (scene == "pipes") return {0.0095, 0.8, kMinRegistered};
-    if (scene == "corridor") return {kMaxShareOver45, 0.8, kMinRegistered};
+    if (scene == "pipes") return {0.0095, 0.8};
+    if (scene == "corridor") return {kMaxShareOver45, 0.8};
     return {};
 }
 
@@ -176,6 +177,41 @@ INSTANTIATE_TEST_SUITE_P(Scenes, AttackScene,
                              return n + (std::get<1>(param_info.param) > 0 ? "_offset_40mm"
                                                                            : "_offset_0");
                          });
+
+TEST(BuiltinSceneIBeam, TheFlangesInnerEdgesGetSurfacesFacingTheirWay) {
+    // The top flanges' inner edges: strips about 25 mm wide facing the channel, between the deck's
+    // underside and the flange's, 1-1.9 m from the scanner. No ball that holds enough of one is a
+    // disk of it; the strip test grows them from the points the faces around them do not fit.
+    for (const double offset : {0.0, 0.040}) {
+        const Attack& a = attack("ibeam-channel", offset);
+        const GrowResult r = grow_surfaces(a.single, GrowerConfig{});
+        const auto& faces = a.scene->faces();
+        const auto& primitives = a.scene->description().primitives;
+        std::size_t points = 0, registered = 0, facing = 0;
+        for (std::size_t i = 0; i < a.single.size(); ++i) {
+            const std::int32_t f = a.single.labels[i];
+            if (f < 0) continue;
+            const scanner::Face& face = faces[static_cast<std::size_t>(f)];
+            const std::string& name = primitives[static_cast<std::size_t>(face.primitive)].name;
+            if (name.find("top-flange") == std::string::npos || std::abs(face.normal.y()) < 0.9)
+                continue;
+            ++points;
+            const std::int32_t l = r.labels[i];
+            if (l < 0) continue;
+            ++registered;
+            const Vec3d& n = r.surfaces[static_cast<std::size_t>(l)].normal;
+            facing += std::abs(n.dot(face.normal)) > std::cos(20 * M_PI / 180) ? 1 : 0;
+        }
+        std::printf(
+            "flange edges, offset %.0f mm: %zu points, %.1f %% registered, %.1f %% on "
+            "surfaces within 20 deg of their normal\n",
+            offset * 1000, points, 100.0 * double(registered) / double(points),
+            100.0 * double(facing) / double(points));
+        ASSERT_GT(points, 1000u);
+        EXPECT_GE(double(registered), 0.85 * double(points));  // 63 % without strips
+        EXPECT_GE(double(facing), 0.7 * double(points));       // 48 % without
+    }
+}
 
 TEST(BuiltinSceneIBeam, ThePapersTestAloneMeetsTheWorkspaceBounds) {
     // Eq. (2) alone at mu = 12 mm, no adaptive radius: the workspace (within 1 m) is dense

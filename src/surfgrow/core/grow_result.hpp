@@ -50,7 +50,8 @@ struct GrowStats {
     std::uint64_t released_by_refinement = 0;  ///< members beyond the tolerance of a refined plane
     std::uint64_t dropped_surfaces = 0;        ///< grown, then dropped: emptied or lone (kDisk)
     std::uint64_t lone_surfaces = 0;           ///< of those, in no plane with any neighbour
-    std::uint64_t noise_points = 0;            ///< valid points left unregistered
+    std::uint64_t strip_surfaces = 0;  ///< grown by the strip test from the leftovers (kDisk)
+    std::uint64_t noise_points = 0;    ///< valid points left unregistered
     OrientationSource orientation = OrientationSource::kUp;
     /// kFrameOrigin: registered points on surfaces the guessed origin sees beyond the grazing
     /// limit (no sensor there could have measured them: they face +z instead). Many of them

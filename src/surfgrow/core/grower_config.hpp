@@ -69,6 +69,8 @@ struct GrowerConfig {
     double adaptive_factor = 8.0;
     /// Attach each point left unregistered by growing to the neighbouring surface whose plane it
     /// fits best, if within the plane tolerance. Closes the gap at edges and in sparse areas.
+    /// With kDisk, then grow strips from what is still left: faces narrower than any ball around
+    /// them, such as a flange's edge (the strip test, docs/algorithm.md).
     bool attach_leftovers = true;
     /// Normal refinement: each surface's normal is refitted over its own neighbourhood and those of
     /// adjacent surfaces in the same plane (normals within this angle, centroids on each other's

@@ -1,5 +1,6 @@
 // The test a neighbourhood must pass to become a surface: the paper's eq. (2), or the disk test
-// that also asks the points to span the ball they claim and to face the sensor.
+// that also asks the points to span the ball they claim and to face the sensor; and the strip test
+// for the faces narrower than a ball, among the points no surface took.
 #pragma once
 
 #include <cmath>
@@ -56,6 +57,39 @@ struct DiskTest {
         if (cos_incidence < std::cos(t.max_incidence_deg * (3.14159265358979323846 / 180.0)))
             return PlaneVerdict::kGrazing;
     }
+    return PlaneVerdict::kPlane;
+}
+
+/// Thresholds of the strip test (docs/algorithm.md, "Strips"): a face narrower than any ball
+/// around it (a flange's edge, a plate's end), judged on the points no surface took.
+struct StripTest {
+    double min_width_sigmas = 3.0;  ///< RMS width sqrt(mid(lambda)) >= this many noise sigmas
+    double max_tilt_deg = 4.0;      ///< standard error of the normal across the strip's axis
+    double min_line_ratio = 0.05;   ///< mid(lambda) >= this * max(lambda): not a line
+    double min_blob_ratio = 0.05;   ///< max(lambda) >= this * radius^2: not one spot
+};
+
+/// The verdict on a strip candidate of `count` points in a ball of radius `radius`, ascending
+/// eigenvalues `e`, unit normal `normal`, at a range where the measured noise is `sigma` and a
+/// plane may be at most `max_var` thick (variance); `sight` as for judge_plane. A strip need not
+/// span the ball, only be two-dimensional beyond doubt: wider than the noise by min_width_sigmas,
+/// and with enough points that its normal tilts by at most max_tilt_deg about its long axis
+/// (sigma / sqrt(count * mid(lambda)) radians).
+[[nodiscard]] inline PlaneVerdict judge_strip(const DiskTest& t, const StripTest& strip,
+                                              const Vec3d& e, double count, const Vec3d& normal,
+                                              double radius, double sigma, double max_var,
+                                              const Vec3d& sight) {
+    if (!is_planar(e, t.alpha) || e[0] > max_var) return PlaneVerdict::kThick;
+    const double width = strip.min_width_sigmas * sigma;
+    if (e[1] < width * width || e[1] < strip.min_line_ratio * e[2] ||
+        e[2] < strip.min_blob_ratio * radius * radius)
+        return PlaneVerdict::kNarrow;
+    if (sigma > strip.max_tilt_deg * (3.14159265358979323846 / 180.0) * std::sqrt(count * e[1]))
+        return PlaneVerdict::kNarrow;
+    const double s = sight.norm();
+    if (s > 0 && std::abs(normal.dot(sight)) / s <
+                     std::cos(t.max_incidence_deg * (3.14159265358979323846 / 180.0)))
+        return PlaneVerdict::kGrazing;
     return PlaneVerdict::kPlane;
 }
 

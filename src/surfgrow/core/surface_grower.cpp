@@ -21,6 +21,7 @@
 #include "surfgrow/core/detail/leftover_pass.hpp"
 #include "surfgrow/core/detail/neighbourhood.hpp"
 #include "surfgrow/core/detail/neighbourhood_fit.hpp"
+#include "surfgrow/core/detail/strip_growing.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/grown_points.hpp"
 #include "surfgrow/core/length_limits.hpp"
@@ -658,6 +659,9 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
     // --- Stage 3: attach leftovers to the best-fitting neighbouring surface.
     if (cfg.attach_leftovers && surface_count > 0)
         attach_leftovers(ctx, slabs, result.surfaces, tolerance, threads, scratch, labels);
+    // --- Stage 3b: strips narrower than a ball, from the points no surface fits.
+    if (cfg.attach_leftovers)
+        st.strip_surfaces = grow_strips(ctx, result.surfaces, home_of, tolerance);
     st.seconds.attach = stage.lap();
     report("attach", 1.0);
 

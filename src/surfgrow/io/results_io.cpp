@@ -160,6 +160,7 @@ nlohmann::json summary_json(const GrowStats& s) {
         {"released_by_refinement", s.released_by_refinement},
         {"dropped_surfaces", s.dropped_surfaces},
         {"lone_surfaces", s.lone_surfaces},
+        {"strip_surfaces", s.strip_surfaces},
         {"adapted_surfaces", s.adapted_surfaces},
         {"noise_sigma_by_range", {{"band", s.noise_band}, {"sigma", s.noise_sigma}}},
         {"layer_sigma_by_range", {{"band", s.layer_band}, {"sigma", s.layer_sigma}}},

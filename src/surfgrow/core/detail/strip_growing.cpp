@@ -1,0 +1,136 @@
+#include "surfgrow/core/detail/strip_growing.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "surfgrow/core/detail/neighbourhood_fit.hpp"
+
+namespace surfgrow::detail {
+
+std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces,
+                          std::vector<std::uint32_t>& home_of, std::vector<double>& tolerance) {
+    const CubeIndex& index = ctx.index;
+    const GrowerConfig& cfg = ctx.config;
+    if (cfg.plane_test != PlaneTest::kDisk || !ctx.noise.known()) return 0;
+    const std::span<std::int32_t> labels = ctx.labels;
+    const DiskTest disk = cfg.disk_test();
+    const StripTest strip;
+    // The leftovers (a few per mille of the points) bucketed in cells as wide as the adaptive
+    // radius, so that a neighbourhood visits the 27 cells around its home and leftovers only. Cell
+    // coordinates wrap at 2^21: far cells that share a key only add candidates the distance test
+    // drops.
+    const double max_radius = cfg.max_radius();
+    const auto max_r2 = static_cast<float>(max_radius * max_radius);
+    const double cell = max_radius;
+    // Cell coordinates as int64, clamped: any extent and any mu stay defined.
+    using Cell = std::array<std::int64_t, 3>;
+    auto cell_of = [&](const Vec3f& p) {
+        Cell c;
+        for (int a = 0; a < 3; ++a)
+            c[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(
+                std::clamp(std::floor(static_cast<double>(p[a]) / cell), -4e18, 4e18));
+        return c;
+    };
+    auto key_of = [](const Cell& c, int dx, int dy, int dz) {
+        constexpr std::uint64_t mask = (std::uint64_t{1} << 21) - 1;
+        return (static_cast<std::uint64_t>(c[0] + dx) & mask) << 42 |
+               (static_cast<std::uint64_t>(c[1] + dy) & mask) << 21 |
+               (static_cast<std::uint64_t>(c[2] + dz) & mask);
+    };
+    struct Keyed {
+        std::uint64_t key;
+        std::uint32_t point;
+        bool operator<(const Keyed& o) const {
+            return key < o.key || (key == o.key && point < o.point);
+        }
+    };
+    std::vector<Keyed> left;
+    for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(index.size()); ++i)
+        if (labels[i] < 0) left.push_back({key_of(cell_of(index.local_point(i)), 0, 0, 0), i});
+    std::sort(left.begin(), left.end());
+    struct Near {
+        float d2;
+        std::uint32_t point;
+        bool operator<(const Near& o) const { return d2 < o.d2 || (d2 == o.d2 && point < o.point); }
+    };
+    std::vector<Near> near;
+    std::uint64_t grown = 0;
+    // Homes in index order, which the sort by cell does not keep.
+    std::vector<std::uint32_t> homes(left.size());
+    for (std::size_t k = 0; k < left.size(); ++k) homes[k] = left[k].point;
+    std::sort(homes.begin(), homes.end());
+    for (const std::uint32_t home : homes) {
+        if (labels[home] >= 0) continue;  // taken by a strip grown before
+        const Vec3f h = index.local_point(home);
+        // Every leftover within the adaptive radius, nearest first.
+        near.clear();
+        const Cell c = cell_of(h);
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    const std::uint64_t key = key_of(c, dx, dy, dz);
+                    auto it = std::lower_bound(left.begin(), left.end(), Keyed{key, 0});
+                    for (; it != left.end() && it->key == key; ++it) {
+                        if (labels[it->point] >= 0) continue;
+                        const float d2 = (index.local_point(it->point) - h).squaredNorm();
+                        if (d2 <= max_r2) near.push_back({d2, it->point});
+                    }
+                }
+        if (near.size() < static_cast<std::size_t>(cfg.min_pts)) continue;
+        std::sort(near.begin(), near.end());
+        const Vec3d towards = ctx.sight.towards(home, h);
+        const double range = ctx.sight.origins.empty() ? 0.0 : towards.norm();
+        const Vec3d sight = ctx.sight.named ? towards : Vec3d::Zero();
+        const double sigma = ctx.noise.sigma(range);
+        const double max_var = cfg.thickness_sigmas * cfg.thickness_sigmas * sigma * sigma;
+        // Balls from mu up to the adaptive radius in steps of sqrt(2): a strip's ball must hold
+        // enough of it to fix its normal, yet not so much of its length that it reads as a line.
+        Moments m;
+        std::size_t inside = 0;
+        for (double radius = cfg.mu; radius <= max_radius * (1 + 1e-9);
+             radius *= std::numbers::sqrt2) {
+            const auto r2 = static_cast<float>(radius * radius);
+            for (; inside < near.size() && near[inside].d2 <= r2; ++inside)
+                m.add((index.local_point(near[inside].point) - h).cast<double>());
+            if (m.n < cfg.min_pts) continue;  // too few yet: a larger ball
+            const PlaneFit fit = fit_plane(m);
+            const PlaneVerdict verdict = judge_strip(disk, strip, fit.eigenvalues, m.n, fit.normal,
+                                                     radius, sigma, max_var, sight);
+            if (verdict == PlaneVerdict::kNarrow) continue;  // a larger ball may hold more of it
+            if (verdict != PlaneVerdict::kPlane) break;      // thick or edge-on: no strip here
+            Neighbourhood nb;
+            nb.radius = radius;
+            nb.range = ctx.sight.origins.empty() ? -1.0 : range;
+            nb.fit = fit;
+            const double tol = tolerance_of(ctx, nb);
+            const Vec3f normal = fit.normal.cast<float>();
+            const Vec3f centre = h + fit.centroid.cast<float>();
+            const auto sid = static_cast<std::int32_t>(surfaces.size());
+            // Its members: the leftovers within its tolerance of its plane. (Taking points from
+            // other surfaces where they fit the strip better was tried: it raised the channel's
+            // p95 from 1.4 to 2.2 degrees, the strips' planes leaning into the faces beside them.)
+            for (std::size_t k = 0; k < inside; ++k) {
+                const std::uint32_t j = near[k].point;
+                if (static_cast<double>(std::abs(normal.dot(index.local_point(j) - centre))) <= tol)
+                    labels[j] = sid;
+            }
+            Surface& s = surfaces.emplace_back();
+            s.home = index.world_point(home);
+            s.centroid = s.home + fit.centroid;
+            s.normal = fit.normal;
+            s.eigenvalues = fit.eigenvalues;
+            s.radius = radius;
+            s.neighbours = static_cast<std::uint32_t>(m.n);
+            s.tolerance = tol;
+            home_of.push_back(home);
+            tolerance.push_back(tol);
+            ++grown;
+            break;
+        }
+    }
+    return grown;
+}
+
+}  // namespace surfgrow::detail

@@ -1,0 +1,25 @@
+// Strips (internal, stage 3b of growing): faces narrower than any ball around them, grown from the
+// points that neither growing nor the leftover pass gave to a surface.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "surfgrow/core/detail/grow_context.hpp"
+
+namespace surfgrow::detail {
+
+/// Stage 3b (kDisk, noise measured): a flange's 20 mm edge or a plate's end never passes the disk
+/// test, since every ball that holds enough of it also holds the faces on either side, and its
+/// points fit neither face's plane. Once those faces hold their points, what is left of the strip
+/// is a plane of its own: each unregistered point in index order is a home whose neighbourhood of
+/// unregistered points only, at mu and doubling up to the adaptive radius, is judged by the strip
+/// test (judge_strip); a strip takes the unregistered points within its tolerance of its plane.
+/// Appends the strips to `surfaces`, `home_of` and `tolerance` and labels their points in
+/// `ctx.labels`; returns how many it grew. Serial and in index order: the same result for any
+/// thread count (leftovers are a few per mille of the points).
+std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces,
+                          std::vector<std::uint32_t>& home_of, std::vector<double>& tolerance);
+
+}  // namespace surfgrow::detail
