@@ -70,7 +70,7 @@ struct GrowerConfig {
     /// Attach each point left unregistered by growing to the neighbouring surface whose plane it
     /// fits best, if within the plane tolerance. Closes the gap at edges and in sparse areas.
     /// With kDisk, then grow strips from what is still left: faces narrower than any ball around
-    /// them, such as a flange's edge (the strip test, docs/algorithm.md).
+    /// them, such as a flange's edge (the strip test, docs/algorithm.md); not in fused clouds.
     bool attach_leftovers = true;
     /// Normal refinement: each surface's normal is refitted over its own neighbourhood and those of
     /// adjacent surfaces in the same plane (normals within this angle, centroids on each other's

@@ -9,6 +9,11 @@
 
 namespace surfgrow::detail {
 
+namespace {
+// A neighbourhood of this many times min_pts that is still narrow is no strip at any radius.
+constexpr double kEnoughPoints = 10.0;
+}  // namespace
+
 std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces,
                           std::vector<std::uint32_t>& home_of, std::vector<double>& tolerance) {
     const CubeIndex& index = ctx.index;
@@ -50,19 +55,31 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
     for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(index.size()); ++i)
         if (labels[i] < 0) left.push_back({key_of(cell_of(index.local_point(i)), 0, 0, 0), i});
     std::sort(left.begin(), left.end());
+    // The balls: from mu up to the adaptive radius in steps of sqrt(2) (a strip's ball must hold
+    // enough of it to fix its normal, yet not so much of its length that it reads as a line).
+    std::vector<double> radii;
+    std::vector<float> radii2;
+    for (double radius = cfg.mu; radius <= max_radius * (1 + 1e-9); radius *= std::numbers::sqrt2) {
+        radii.push_back(radius);
+        radii2.push_back(static_cast<float>(radius * radius));
+    }
     struct Near {
         float d2;
         std::uint32_t point;
-        bool operator<(const Near& o) const { return d2 < o.d2 || (d2 == o.d2 && point < o.point); }
     };
-    std::vector<Near> near;
+    std::vector<Near> near, by_ball;
+    std::vector<std::uint32_t> first(radii.size() + 2);
     std::uint64_t grown = 0;
     // Homes in index order, which the sort by cell does not keep.
     std::vector<std::uint32_t> homes(left.size());
     for (std::size_t k = 0; k < left.size(); ++k) homes[k] = left[k].point;
     std::sort(homes.begin(), homes.end());
+    // A home whose balls hold no strip leaves its mu-neighbours untried as homes: their balls
+    // are nearly its own (without this, a cluttered room's leftovers cost seconds).
+    std::vector<bool> tried(index.size(), false);
+    const auto mu2 = static_cast<float>(cfg.mu * cfg.mu);
     for (const std::uint32_t home : homes) {
-        if (labels[home] >= 0) continue;  // taken by a strip grown before
+        if (labels[home] >= 0 || tried[home]) continue;  // a strip's, or near a home that failed
         const Vec3f h = index.local_point(home);
         // Every leftover within the adaptive radius, nearest first.
         near.clear();
@@ -79,27 +96,40 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
                     }
                 }
         if (near.size() < static_cast<std::size_t>(cfg.min_pts)) continue;
-        std::sort(near.begin(), near.end());
+        bool made = false;
+        // Nearest ball first (a counting sort on the smallest ball that holds each point; the
+        // gathering's order within a ball): what each larger ball adds follows what it held.
+        std::fill(first.begin(), first.end(), 0);
+        auto ball_of = [&](float d2) {
+            std::size_t b = 0;
+            while (b < radii2.size() && d2 > radii2[b]) ++b;
+            return b;  // radii.size(): beyond the last ball
+        };
+        for (const Near& q : near) ++first[ball_of(q.d2) + 1];
+        for (std::size_t b = 1; b < first.size(); ++b) first[b] += first[b - 1];
+        by_ball.resize(near.size());
+        for (const Near& q : near) by_ball[first[ball_of(q.d2)]++] = q;
+        near.swap(by_ball);
         const Vec3d towards = ctx.sight.towards(home, h);
         const double range = ctx.sight.origins.empty() ? 0.0 : towards.norm();
         const Vec3d sight = ctx.sight.named ? towards : Vec3d::Zero();
         const double sigma = ctx.noise.sigma(range);
         const double max_var = cfg.thickness_sigmas * cfg.thickness_sigmas * sigma * sigma;
-        // Balls from mu up to the adaptive radius in steps of sqrt(2): a strip's ball must hold
-        // enough of it to fix its normal, yet not so much of its length that it reads as a line.
         Moments m;
         std::size_t inside = 0;
-        for (double radius = cfg.mu; radius <= max_radius * (1 + 1e-9);
-             radius *= std::numbers::sqrt2) {
-            const auto r2 = static_cast<float>(radius * radius);
+        for (std::size_t ball = 0; ball < radii.size(); ++ball) {
+            const double radius = radii[ball];
+            const float r2 = radii2[ball];
             for (; inside < near.size() && near[inside].d2 <= r2; ++inside)
                 m.add((index.local_point(near[inside].point) - h).cast<double>());
             if (m.n < cfg.min_pts) continue;  // too few yet: a larger ball
             const PlaneFit fit = fit_plane(m);
             const PlaneVerdict verdict = judge_strip(disk, strip, fit.eigenvalues, m.n, fit.normal,
                                                      radius, sigma, max_var, sight);
-            if (verdict == PlaneVerdict::kNarrow) continue;  // a larger ball may hold more of it
-            if (verdict != PlaneVerdict::kPlane) break;      // thick or edge-on: no strip here
+            // A larger ball may hold more of a strip; not of one that is narrow with this many
+            // points already (a line or a blob only lengthens).
+            if (verdict == PlaneVerdict::kNarrow && m.n < kEnoughPoints * cfg.min_pts) continue;
+            if (verdict != PlaneVerdict::kPlane) break;  // thick or edge-on: no strip here
             Neighbourhood nb;
             nb.radius = radius;
             nb.range = ctx.sight.origins.empty() ? -1.0 : range;
@@ -127,7 +157,13 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
             home_of.push_back(home);
             tolerance.push_back(tol);
             ++grown;
+            made = true;
             break;
+        }
+        if (made) continue;
+        for (const Near& q : near) {
+            if (q.d2 > mu2) break;  // the first ball's come first
+            tried[q.point] = true;
         }
     }
     return grown;

@@ -14,11 +14,12 @@ namespace surfgrow::detail {
 /// test, since every ball that holds enough of it also holds the faces on either side, and its
 /// points fit neither face's plane. Once those faces hold their points, what is left of the strip
 /// is a plane of its own: each unregistered point in index order is a home whose neighbourhood of
-/// unregistered points only, at mu and doubling up to the adaptive radius, is judged by the strip
-/// test (judge_strip); a strip takes the unregistered points within its tolerance of its plane.
+/// unregistered points only, at mu and growing by sqrt(2) up to the adaptive radius, is judged by
+/// the strip test (judge_strip); a strip takes the unregistered points within its tolerance of its
+/// plane. A home that grows no strip leaves the leftovers within mu of it untried as homes.
 /// Appends the strips to `surfaces`, `home_of` and `tolerance` and labels their points in
 /// `ctx.labels`; returns how many it grew. Serial and in index order: the same result for any
-/// thread count (leftovers are a few per mille of the points).
+/// thread count. The grower calls it for clouds of one scan only (see surface_grower.cpp).
 std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces,
                           std::vector<std::uint32_t>& home_of, std::vector<double>& tolerance);
 
