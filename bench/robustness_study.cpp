@@ -109,6 +109,14 @@ int main(int argc, char** argv) {
                 "pl>45", "faces", "grow s");
     for (const std::string& name : scenes) {
         const scanner::Scene scene(scanner::builtin_scene(name));
+        // The name of the primitive face f belongs to ("none" for points on no face).
+        const auto face_name = [&](auto f) {
+            if (f < 0) return "none";
+            const auto& face = scene.faces()[static_cast<std::size_t>(f)];
+            return scene.description()
+                .primitives[static_cast<std::size_t>(face.primitive)]
+                .name.c_str();
+        };
         for (const double offset : {0.0, 0.040}) {
             for (const int poses : {1, 3}) {
                 const PointCloud cloud = scan(scene, offset, poses, 1);
@@ -160,12 +168,8 @@ int main(int argc, char** argv) {
                         std::uint64_t total = 0;
                         for (std::size_t i = 0; i < cloud.size(); ++i)
                             if (cloud.labels[i] == f) ++on[pl[i]], ++total;
-                        std::printf(
-                            "      missed face %d (%s), %llu points:", f,
-                            scene.description()
-                                .primitives[std::size_t(scene.faces()[std::size_t(f)].primitive)]
-                                .name.c_str(),
-                            (unsigned long long)total);
+                        std::printf("      missed face %d (%s), %llu points:", f, face_name(f),
+                                    (unsigned long long)total);
                         for (auto [q, c] : on)
                             if (c * 20 >= total)
                                 std::printf(
@@ -223,13 +227,7 @@ int main(int argc, char** argv) {
                         std::printf("        plane %d holds:", top);
                         for (auto [t, c] : comp)
                             if (c * 50 >= plane_size[top])
-                                std::printf(" face %d (%s) %.0f%%", t,
-                                            t < 0
-                                                ? "none"
-                                                : scene.description()
-                                                      .primitives[std::size_t(
-                                                          scene.faces()[std::size_t(t)].primitive)]
-                                                      .name.c_str(),
+                                std::printf(" face %d (%s) %.0f%%", t, face_name(t),
                                             100.0 * double(c) / double(plane_size[top]));
                         std::printf("\n");
                     }
@@ -430,11 +428,8 @@ int main(int argc, char** argv) {
                                 if (c.first > 0)
                                     std::printf(
                                         "      band face %d (%s): %llu of %llu unregistered\n", f,
-                                        scene.description()
-                                            .primitives[std::size_t(
-                                                scene.faces()[std::size_t(f)].primitive)]
-                                            .name.c_str(),
-                                        (unsigned long long)c.first, (unsigned long long)c.second);
+                                        face_name(f), (unsigned long long)c.first,
+                                        (unsigned long long)c.second);
                         }
                     }
                     if (const char* uf = std::getenv("STUDY_UNREG_FACE")) {
@@ -467,10 +462,7 @@ int main(int argc, char** argv) {
                     for (std::size_t f = 0; f < bad.size(); ++f) {
                         if (unreg[f] < 50) continue;
                         std::printf("      face %zu (%s): %llu of %llu unregistered\n", f,
-                                    scene.description()
-                                        .primitives[std::size_t(scene.faces()[f].primitive)]
-                                        .name.c_str(),
-                                    static_cast<unsigned long long>(unreg[f]),
+                                    face_name(f), static_cast<unsigned long long>(unreg[f]),
                                     static_cast<unsigned long long>(total[f]));
                     }
                     for (std::size_t f = 0; f < bad.size(); ++f) {
@@ -478,11 +470,7 @@ int main(int argc, char** argv) {
                         std::printf(
                             "      face %zu (%s): %llu of %llu > 45 deg, radius %.0f mm, "
                             "range %.2f m\n",
-                            f,
-                            scene.description()
-                                .primitives[std::size_t(scene.faces()[f].primitive)]
-                                .name.c_str(),
-                            static_cast<unsigned long long>(bad[f]),
+                            f, face_name(f), static_cast<unsigned long long>(bad[f]),
                             static_cast<unsigned long long>(all[f]),
                             1000 * radius_sum[f] / double(bad[f]), range_sum[f] / double(bad[f]));
                     }

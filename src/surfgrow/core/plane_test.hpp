@@ -42,6 +42,16 @@ struct DiskTest {
     return 0.25 * radius * radius;
 }
 
+/// Whether a plane with unit `normal` is seen edge-on: its normal makes more than
+/// `max_incidence_deg` with `sight`, the direction from the sensor (any length; zero: unknown,
+/// never edge-on).
+[[nodiscard]] inline bool edge_on(const Vec3d& normal, const Vec3d& sight,
+                                  double max_incidence_deg) {
+    const double s = sight.norm();
+    return s > 0 && std::abs(normal.dot(sight)) / s <
+                        std::cos(max_incidence_deg * (3.14159265358979323846 / 180.0));
+}
+
 /// The verdict on a neighbourhood of radius `radius` with ascending eigenvalues `e` and unit
 /// normal `normal`. `sight` is the direction from the sensor to the home point (any length), or
 /// zero when the sensor is unknown. With PlaneTest::kPaper only eq. (2) is applied.
@@ -51,12 +61,7 @@ struct DiskTest {
     if (!is_planar(e, t.alpha)) return PlaneVerdict::kThick;
     if (test == PlaneTest::kPaper) return PlaneVerdict::kPlane;
     if (e[1] < t.min_spread * disk_variance(radius)) return PlaneVerdict::kNarrow;
-    const double s = sight.norm();
-    if (s > 0) {
-        const double cos_incidence = std::abs(normal.dot(sight)) / s;
-        if (cos_incidence < std::cos(t.max_incidence_deg * (3.14159265358979323846 / 180.0)))
-            return PlaneVerdict::kGrazing;
-    }
+    if (edge_on(normal, sight, t.max_incidence_deg)) return PlaneVerdict::kGrazing;
     return PlaneVerdict::kPlane;
 }
 
@@ -86,10 +91,7 @@ struct StripTest {
         return PlaneVerdict::kNarrow;
     if (sigma > strip.max_tilt_deg * (3.14159265358979323846 / 180.0) * std::sqrt(count * e[1]))
         return PlaneVerdict::kNarrow;
-    const double s = sight.norm();
-    if (s > 0 && std::abs(normal.dot(sight)) / s <
-                     std::cos(t.max_incidence_deg * (3.14159265358979323846 / 180.0)))
-        return PlaneVerdict::kGrazing;
+    if (edge_on(normal, sight, t.max_incidence_deg)) return PlaneVerdict::kGrazing;
     return PlaneVerdict::kPlane;
 }
 

@@ -27,7 +27,6 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
     // coordinates wrap at 2^21: far cells that share a key only add candidates the distance test
     // drops.
     const double max_radius = cfg.max_radius();
-    const auto max_r2 = static_cast<float>(max_radius * max_radius);
     const double cell = max_radius;
     // Cell coordinates as int64, clamped: any extent and any mu stay defined.
     using Cell = std::array<std::int64_t, 3>;
@@ -63,23 +62,26 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
         radii.push_back(radius);
         radii2.push_back(static_cast<float>(radius * radius));
     }
+    // The smallest ball that holds a point at squared distance d2; radii.size(): none (beyond the
+    // largest ball it counts for nothing).
+    auto ball_of = [&](float d2) {
+        std::size_t b = 0;
+        while (b < radii2.size() && d2 > radii2[b]) ++b;
+        return b;
+    };
     struct Near {
-        float d2;
         std::uint32_t point;
+        std::uint32_t ball;
     };
     std::vector<Near> near, by_ball;
-    std::vector<std::uint32_t> first(radii.size() + 2);
+    std::vector<std::uint32_t> first(radii.size() + 1);
     std::uint64_t grown = 0;
-    // Homes in index order, which the sort by cell does not keep.
-    std::vector<std::uint32_t> homes(left.size());
-    for (std::size_t k = 0; k < left.size(); ++k) homes[k] = left[k].point;
-    std::sort(homes.begin(), homes.end());
     // A home whose balls hold no strip leaves its mu-neighbours untried as homes: their balls
     // are nearly its own (without this, a cluttered room's leftovers cost seconds).
     std::vector<bool> tried(index.size(), false);
-    const auto mu2 = static_cast<float>(cfg.mu * cfg.mu);
-    for (const std::uint32_t home : homes) {
-        if (labels[home] >= 0 || tried[home]) continue;  // a strip's, or near a home that failed
+    // Homes in index order: every point still unregistered (a leftover no strip took yet).
+    for (std::uint32_t home = 0; home < static_cast<std::uint32_t>(index.size()); ++home) {
+        if (labels[home] >= 0 || tried[home]) continue;  // registered, or near a home that failed
         const Vec3f h = index.local_point(home);
         // Every leftover within the adaptive radius, nearest first.
         near.clear();
@@ -91,8 +93,10 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
                     auto it = std::lower_bound(left.begin(), left.end(), Keyed{key, 0});
                     for (; it != left.end() && it->key == key; ++it) {
                         if (labels[it->point] >= 0) continue;
-                        const float d2 = (index.local_point(it->point) - h).squaredNorm();
-                        if (d2 <= max_r2) near.push_back({d2, it->point});
+                        const std::size_t ball =
+                            ball_of((index.local_point(it->point) - h).squaredNorm());
+                        if (ball < radii.size())
+                            near.push_back({it->point, static_cast<std::uint32_t>(ball)});
                     }
                 }
         if (near.size() < static_cast<std::size_t>(cfg.min_pts)) continue;
@@ -100,15 +104,10 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
         // Nearest ball first (a counting sort on the smallest ball that holds each point; the
         // gathering's order within a ball): what each larger ball adds follows what it held.
         std::fill(first.begin(), first.end(), 0);
-        auto ball_of = [&](float d2) {
-            std::size_t b = 0;
-            while (b < radii2.size() && d2 > radii2[b]) ++b;
-            return b;  // radii.size(): beyond the last ball
-        };
-        for (const Near& q : near) ++first[ball_of(q.d2) + 1];
+        for (const Near& q : near) ++first[q.ball + 1];
         for (std::size_t b = 1; b < first.size(); ++b) first[b] += first[b - 1];
         by_ball.resize(near.size());
-        for (const Near& q : near) by_ball[first[ball_of(q.d2)]++] = q;
+        for (const Near& q : near) by_ball[first[q.ball]++] = q;
         near.swap(by_ball);
         const Vec3d towards = ctx.sight.towards(home, h);
         const double range = ctx.sight.origins.empty() ? 0.0 : towards.norm();
@@ -119,8 +118,7 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
         std::size_t inside = 0;
         for (std::size_t ball = 0; ball < radii.size(); ++ball) {
             const double radius = radii[ball];
-            const float r2 = radii2[ball];
-            for (; inside < near.size() && near[inside].d2 <= r2; ++inside)
+            for (; inside < near.size() && near[inside].ball <= ball; ++inside)
                 m.add((index.local_point(near[inside].point) - h).cast<double>());
             if (m.n < cfg.min_pts) continue;  // too few yet: a larger ball
             const PlaneFit fit = fit_plane(m);
@@ -162,7 +160,7 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
         }
         if (made) continue;
         for (const Near& q : near) {
-            if (q.d2 > mu2) break;  // the first ball's come first
+            if (q.ball > 0) break;  // the first ball's come first
             tried[q.point] = true;
         }
     }
