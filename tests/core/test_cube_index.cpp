@@ -229,6 +229,14 @@ void check_against_brute_force(const std::vector<Vec3f>& pts, double mu) {
         std::sort(from_table.begin(), from_table.end());
         ASSERT_EQ(from_table, expected) << "table, cube " << c;
         ASSERT_EQ(from_runs, expected) << "runs, cube " << c;  // already in sorted order
+        // The same columns as cube numbers.
+        std::vector<CubeIndex::Range> cube_runs;
+        index.column_cube_ranges(index.cube_coords(c), 1, cube_runs);
+        ASSERT_EQ(cube_runs.size(), runs.size());
+        for (std::size_t k = 0; k < runs.size(); ++k) {
+            ASSERT_EQ(index.cube_begin(cube_runs[k].begin), runs[k].begin);
+            ASSERT_EQ(index.cube_begin(cube_runs[k].end), runs[k].end);
+        }
     }
     for (double radius : {mu, 2.5 * mu})
         for (std::uint32_t q = 0; q < index.size(); ++q)

@@ -231,6 +231,11 @@ void CubeIndex::column_ranges(const Eigen::Vector3i& coords, int reach,
     for_each_column_run(coords, reach, [&](const Range& r) { out.push_back(r); });
 }
 
+void CubeIndex::column_cube_ranges(const Eigen::Vector3i& coords, int reach,
+                                   std::vector<Range>& out) const {
+    for_each_column_cubes(coords, reach, [&](const Range& r) { out.push_back(r); });
+}
+
 std::size_t CubeIndex::gallop_to(std::size_t p, std::uint64_t key, bool inclusive) const {
     // Exponential search from p, then binary search: O(log distance), so runs of nearby columns
     // cost a few steps each instead of a search over all cubes.

@@ -103,6 +103,9 @@ class CubeIndex {
 
     /// Appends the runs of for_each_column_run() to `out`.
     void column_ranges(const Eigen::Vector3i& coords, int reach, std::vector<Range>& out) const;
+    /// The same runs as cube numbers: [begin, end) of cube_begin()/cube_end(), not of points.
+    void column_cube_ranges(const Eigen::Vector3i& coords, int reach,
+                            std::vector<Range>& out) const;
 
     /// The 9 runs around each cube in [cube_begin, cube_end), in one linear sweep:
     /// out[9 * (c - cube_begin) + k]. Faster than column_ranges() when most cubes are visited.
@@ -119,8 +122,11 @@ class CubeIndex {
     [[nodiscard]] Eigen::Vector3i key_bits() const { return bits_; }
 
   private:
+    /// for_each_column_run()'s columns as cube numbers [begin, end).
     template <class F>
-    void for_each_ranked_column_run(const Eigen::Vector3i& coords, int reach, F&& f) const;
+    void for_each_column_cubes(const Eigen::Vector3i& coords, int reach, F&& f) const;
+    template <class F>
+    void for_each_ranked_column_cubes(const Eigen::Vector3i& coords, int reach, F&& f) const;
     /// Keys and input indices of the `count` included finite points, by ranks (sets ranked_).
     void rank_keys(std::span<const Vec3f> points, std::span<const std::uint8_t> include,
                    detail::BulkVector<std::uint64_t>& keys,
@@ -184,9 +190,16 @@ void CubeIndex::for_each_within(const Vec3d& q, double radius, F&& f) const {
 
 template <class F>
 void CubeIndex::for_each_column_run(const Eigen::Vector3i& coords, int reach, F&& f) const {
+    for_each_column_cubes(coords, reach, [&](const Range& cubes) {
+        f(Range{cube_start_[cubes.begin], cube_start_[cubes.end]});
+    });
+}
+
+template <class F>
+void CubeIndex::for_each_column_cubes(const Eigen::Vector3i& coords, int reach, F&& f) const {
     if (reach < 0 || cube_keys_.empty()) return;
     if (ranked_) {
-        for_each_ranked_column_run(coords, reach, f);
+        for_each_ranked_column_cubes(coords, reach, f);
         return;
     }
     const auto zmax = static_cast<int>((std::int64_t{1} << bits_.z()) - 1);
@@ -201,13 +214,15 @@ void CubeIndex::for_each_column_run(const Eigen::Vector3i& coords, int reach, F&
             const std::size_t first = gallop_to(cursor, encode({x, y, zlo}), false);
             const std::size_t last = gallop_to(first, encode({x, y, zhi}), true);
             cursor = last;
-            if (first < last) f(Range{cube_start_[first], cube_start_[last]});
+            if (first < last)
+                f(Range{static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(last)});
         }
     }
 }
 
 template <class F>
-void CubeIndex::for_each_ranked_column_run(const Eigen::Vector3i& coords, int reach, F&& f) const {
+void CubeIndex::for_each_ranked_column_cubes(const Eigen::Vector3i& coords, int reach,
+                                             F&& f) const {
     // The occupied grid coordinates within reach on each axis, then their columns in key order:
     // the same runs as the grid's layout gives.
     const detail::RankedCubes& rc = *ranked_;
@@ -226,7 +241,8 @@ void CubeIndex::for_each_ranked_column_run(const Eigen::Vector3i& coords, int re
             const std::size_t first = gallop_to(cursor, rc.key(column, zlo), false);
             const std::size_t last = gallop_to(first, rc.key(column, zhi), true);
             cursor = last;
-            if (first < last) f(Range{cube_start_[first], cube_start_[last]});
+            if (first < last)
+                f(Range{static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(last)});
         }
     }
 }

@@ -658,7 +658,7 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
 
     // --- Stage 3: attach leftovers to the best-fitting neighbouring surface.
     if (cfg.attach_leftovers && surface_count > 0)
-        attach_leftovers(ctx, slabs, result.surfaces, tolerance, threads, scratch, labels);
+        attach_leftovers(ctx, slabs, result.surfaces, tolerance, threads, labels);
     // --- Stage 3b: strips narrower than a ball, from the points no surface fits. Not in fused
     // clouds, whose leftovers are mostly other scans' layers and mixed pixels: there strips added
     // 0.01-0.03 % of registration, serially (docs/algorithm.md).

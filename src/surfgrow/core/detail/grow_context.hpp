@@ -3,7 +3,6 @@
 // neighbourhood, and the surfaces' planes in the index's frame.
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -23,9 +22,6 @@ namespace surfgrow::detail {
 
 using Range = CubeIndex::Range;
 
-// The leftover pass's wider searches double their radius at most this many times (the adaptive
-// radius's 64 mu).
-constexpr std::size_t kFarLevels = 7;
 // A scan's range bias moves its layer along the rays: by cos(incidence) of it along the normal,
 // counted as at least this much (grazing layers are few and thin on the ground).
 constexpr double kMinLayerCos = 0.25;
@@ -52,7 +48,6 @@ struct Scratch {
     std::vector<std::uint32_t> order;
     std::vector<Range> table;
     std::vector<Range> runs;
-    std::array<std::vector<Range>, kFarLevels> far_runs;  // the leftover pass's wider searches
     std::vector<TakenPoint> taken;
 };
 

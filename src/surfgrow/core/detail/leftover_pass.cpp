@@ -3,9 +3,12 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <utility>
+
+#include "surfgrow/core/detail/parallel_errors.hpp"
 
 namespace surfgrow::detail {
 
@@ -18,6 +21,8 @@ constexpr double kMissRadiusPerMu = 2.0;
 constexpr double kLayerSigmas = 3.0;
 // ... if at least this many unregistered points of its own scan around it make that layer.
 constexpr int kLayerMinPoints = 4;
+// The wider searches double their radius at most this many times (the adaptive radius's 64 mu).
+constexpr std::size_t kFarLevels = 7;
 
 /// A surface near a leftover, and the leftover's signed distance to its plane.
 struct Candidate {
@@ -69,16 +74,89 @@ std::int32_t attach_layer(const GrowContext& ctx, const Vec3d& ray,
     return best;
 }
 
+/// Per cube, the distinct surfaces its points were grown into (sorted). A leftover's search reads
+/// the surfaces around it from these lists rather than every point around it (a dense scan holds
+/// thousands of points within mu of a leftover, on a handful of surfaces), and scans points only
+/// to confirm that a surface it would take has a member within reach.
+struct CubeSurfaces {
+    std::vector<std::uint32_t> start;  // cube_count() + 1 entries
+    std::vector<std::int32_t> ids;
+
+    [[nodiscard]] std::span<const std::int32_t> of(std::size_t c) const {
+        return {ids.data() + start[c], ids.data() + start[c + 1]};
+    }
+    [[nodiscard]] bool holds(std::size_t c, std::int32_t sid) const {
+        const auto list = of(c);
+        return std::binary_search(list.begin(), list.end(), sid);
+    }
+};
+
+CubeSurfaces cube_surfaces(const CubeIndex& index, std::span<const std::int32_t> labels,
+                           int threads) {
+    const std::size_t cubes = index.cube_count();
+    CubeSurfaces cs;
+    cs.start.assign(cubes + 1, 0);
+    // Chunks of cubes, each listing its own; concatenated in cube order afterwards.
+    const std::size_t chunks = std::min<std::size_t>(cubes, 64 * static_cast<std::size_t>(threads));
+    std::vector<std::vector<std::int32_t>> part(chunks);
+    ParallelErrors errors;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+    for (std::size_t k = 0; k < chunks; ++k) {
+        errors.run(k, [&] {
+            std::vector<std::int32_t>& out = part[k];
+            for (std::size_t c = k * cubes / chunks; c < (k + 1) * cubes / chunks; ++c) {
+                const std::size_t first = out.size();
+                std::int32_t last = -1;
+                for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i)
+                    if (labels[i] >= 0 && labels[i] != last) out.push_back(last = labels[i]);
+                std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+                out.erase(std::unique(out.begin() + static_cast<std::ptrdiff_t>(first), out.end()),
+                          out.end());
+                cs.start[c + 1] = static_cast<std::uint32_t>(out.size() - first);
+            }
+        });
+    }
+    errors.rethrow();
+    for (std::size_t c = 0; c < cubes; ++c) cs.start[c + 1] += cs.start[c];
+    cs.ids.reserve(cs.start[cubes]);
+    for (const auto& p : part) cs.ids.insert(cs.ids.end(), p.begin(), p.end());
+    return cs;
+}
+
+/// A cube within a search's reach and the low corner of its box (local frame).
+struct NearCube {
+    std::uint32_t cube;
+    Vec3f low;
+};
+
+/// A thread's buffers for the leftover pass.
+struct LeftoverScratch {
+    std::vector<Range> runs;                                   // of cubes
+    std::array<std::vector<NearCube>, kFarLevels + 1> levels;  // [0]: within mu; then far levels
+    std::vector<const NearCube*> reach;                        // the cubes a ball may touch
+    std::vector<std::int32_t> around;                          // the surfaces in them
+    std::vector<std::uint32_t> seen;                           // per surface: last search's stamp
+    std::uint32_t stamp = 0;
+    std::vector<std::pair<double, std::int32_t>> fitting;
+    std::vector<Candidate> candidates;
+    std::vector<double> dist;
+    std::vector<Vec3f> layer;
+};
+
 /// Leftover pass: for each unregistered point, the neighbouring surface whose plane it fits best.
 /// Reads only labels fixed by growing and writes to `attach`, so slabs can run in any order.
-/// Leftovers are a few per cent of the points: their cubes' runs are looked up one cube at a time.
+/// A surface is a neighbour at radius r if one of its points lies within r: the best-fitting of
+/// those is the same as a visit of every point within r would find (ties by surface id).
 void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Surface>& surfaces,
-                 std::span<const double> tolerance, Scratch& s,
-                 std::vector<std::pair<std::uint32_t, std::int32_t>>& attach) {
+                 std::span<const double> tolerance, const CubeSurfaces& near_surfaces,
+                 LeftoverScratch& s, std::vector<std::pair<std::uint32_t, std::int32_t>>& attach) {
     const CubeIndex& index = ctx.index;
     const GrowerConfig& cfg = ctx.config;
     const std::span<const std::int32_t> labels = ctx.labels;
-    const auto r2 = static_cast<float>(cfg.mu * cfg.mu);
+    const float* xs = index.xs();
+    const float* ys = index.ys();
+    const float* zs = index.zs();
+    const auto cube = static_cast<float>(index.cube_size());
     const bool every_miss = cfg.plane_test == PlaneTest::kDisk;
     // Wider searches double the radius from 2 mu: an isolated point up to the adaptive radius's
     // reach, one beside surfaces that it does not fit up to kMissRadiusPerMu (the surfaces across
@@ -91,87 +169,154 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
     if (cfg.max_radius() <= cfg.mu) radii.clear();
     const double miss_limit = std::min(cfg.max_radius(), kMissRadiusPerMu * cfg.mu);
     const bool layered = every_miss && ctx.sight.fused() && ctx.layers.known() && !radii.empty();
-    std::vector<Candidate> candidates;
-    std::vector<double> dist;
-    std::vector<Vec3f> layer;
+    if (s.seen.size() != surfaces.size()) s.seen.assign(surfaces.size(), 0);
     for (std::uint32_t c = slab.cube_begin; c < slab.cube_end; ++c) {
-        s.runs.clear();
-        for (auto& runs : s.far_runs) runs.clear();
-        // The runs of search level `level` around cube c, looked up on first use.
-        auto far_runs = [&](std::size_t level) -> std::span<const Range> {
-            if (s.far_runs[level].empty())
-                index.column_ranges(index.cube_coords(c),
-                                    static_cast<int>(std::ceil(radii[level] / index.cube_size())),
-                                    s.far_runs[level]);
-            return s.far_runs[level];
+        for (auto& level : s.levels) level.clear();
+        // The cubes of search level `level` around cube c (0: within mu), looked up on first use.
+        auto level_cubes = [&](std::size_t level) -> std::span<const NearCube> {
+            std::vector<NearCube>& out = s.levels[level];
+            if (!out.empty()) return out;
+            const int reach =
+                level == 0 ? 1 : static_cast<int>(std::ceil(radii[level - 1] / index.cube_size()));
+            s.runs.clear();
+            index.column_cube_ranges(index.cube_coords(c), reach, s.runs);
+            for (const Range& run : s.runs)
+                for (std::uint32_t k = run.begin; k < run.end; ++k)
+                    out.push_back({k, (index.grid_coords(k) * index.cube_size()).cast<float>()});
+            return out;
         };
         for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
             if (labels[i] >= 0) continue;
-            if (s.runs.empty()) index.column_ranges(index.cube_coords(c), 1, s.runs);
             const Vec3f p = index.local_point(i);
             const Vec3d pw = index.origin() + p.cast<double>();
-            std::int32_t best = -1;
-            double best_dist = 0;
-            bool any_neighbour = false;
-            // Fused clouds: the surfaces whose plane another layer of it may be off by (at normal
-            // incidence; attach_layer applies each one's), for the layer search below.
-            candidates.clear();
-            const Vec3d ray = layered ? ctx.sight.towards(i, p) : Vec3d::Zero();
-            const double layer_reach = layered ? kLayerSigmas * ctx.layers.sigma(ray.norm()) : 0.0;
-            auto consider = [&](std::int32_t sid) {
-                any_neighbour = true;
-                const auto k = static_cast<std::size_t>(sid);
-                const Surface& surf = surfaces[k];
-                const double signed_d = surf.normal.dot(pw - surf.centroid);
-                const double d = std::abs(signed_d);
-                if (d <= tolerance[k] && (best < 0 || d < best_dist)) {
-                    best = sid;
-                    best_dist = d;
+            // A cube whose box lies farther than the radius holds no point within it. The margin
+            // covers the rounding of float coordinates and box corners: it only keeps a cube in.
+            const float margin =
+                0.01f * cube + 1e-6f * (std::abs(p.x()) + std::abs(p.y()) + std::abs(p.z()));
+            auto gather = [&](std::span<const NearCube> cubes, double radius) {
+                const float reach = static_cast<float>(radius) + margin;
+                s.reach.clear();
+                s.around.clear();
+                if (++s.stamp == 0) {  // wrapped: forget every earlier stamp
+                    std::fill(s.seen.begin(), s.seen.end(), 0);
+                    s.stamp = 1;
                 }
-                if (layered && tolerance[k] >= 0 && d <= tolerance[k] + layer_reach &&
-                    std::none_of(candidates.begin(), candidates.end(),
-                                 [&](const Candidate& q) { return q.surface == sid; }))
-                    candidates.push_back({sid, signed_d});
+                for (const NearCube& nc : cubes) {
+                    float d2 = 0;
+                    for (int a = 0; a < 3; ++a) {
+                        const float lo = nc.low[a] - p[a], hi = p[a] - (nc.low[a] + cube);
+                        const float d = std::max({lo, hi, 0.f});
+                        d2 += d * d;
+                    }
+                    if (d2 > reach * reach) continue;
+                    s.reach.push_back(&nc);
+                    for (const std::int32_t sid : near_surfaces.of(nc.cube)) {
+                        std::uint32_t& mark = s.seen[static_cast<std::size_t>(sid)];
+                        if (mark == s.stamp) continue;
+                        mark = s.stamp;
+                        s.around.push_back(sid);
+                    }
+                }
             };
-            // Neighbours come in runs of one surface: considering a surface again changes nothing.
-            std::int32_t last = -1;
-            int near = 0;  // points within mu, registered or not
-            auto visit = [&](std::uint32_t j) {
-                ++near;
-                const std::int32_t l = labels[j];
-                if (l < 0 || l == last) return;
-                consider(l);
-                last = l;
+            // Whether surface sid has a point within the radius of the last gather().
+            auto within = [&](std::int32_t sid, float r2) {
+                for (const NearCube* nc : s.reach) {
+                    if (!near_surfaces.holds(nc->cube, sid)) continue;
+                    for (std::uint32_t j = index.cube_begin(nc->cube); j < index.cube_end(nc->cube);
+                         ++j) {
+                        if (labels[j] != sid) continue;
+                        const float dx = xs[j] - p.x(), dy = ys[j] - p.y(), dz = zs[j] - p.z();
+                        if (dx * dx + dy * dy + dz * dz <= r2) return true;
+                    }
+                }
+                return false;
             };
-            for_each_in_runs_within(index, s.runs, p, r2, visit);
+            // The best-fitting surface within `radius` among the cubes gathered; -1 if none.
+            auto best_within = [&](double radius) {
+                s.fitting.clear();
+                for (const std::int32_t sid : s.around) {
+                    const auto k = static_cast<std::size_t>(sid);
+                    const double d = std::abs(surfaces[k].normal.dot(pw - surfaces[k].centroid));
+                    if (d <= tolerance[k]) s.fitting.emplace_back(d, sid);
+                }
+                std::sort(s.fitting.begin(), s.fitting.end());
+                const auto r2 = static_cast<float>(radius * radius);
+                for (const auto& [d, sid] : s.fitting)
+                    if (within(sid, r2)) return sid;
+                return std::int32_t{-1};
+            };
+            const auto mu2 = static_cast<float>(cfg.mu * cfg.mu);
+            gather(level_cubes(0), cfg.mu);
+            std::int32_t best = best_within(cfg.mu);
+            double last_radius = cfg.mu;
             // Sparse at mu: as far as the adaptive radius reaches. Dense but fitting nothing here
-            // (mixed pixels, a rejected edge): only a little farther.
-            const bool sparse = !any_neighbour && near < cfg.min_pts;
-            if (!any_neighbour || (every_miss && best < 0)) {
+            // (mixed pixels, a rejected edge): only a little farther. Counting stops as soon as
+            // the answer is known: min_pts points (the disk test's "dense"), or a registered one.
+            bool far = best < 0;
+            bool sparse = false;
+            if (best < 0) {
+                int near = 0;  // points within mu, registered or not
+                bool any_neighbour = false;
+                for (const NearCube* nc : s.reach) {
+                    for (std::uint32_t j = index.cube_begin(nc->cube); j < index.cube_end(nc->cube);
+                         ++j) {
+                        const float dx = xs[j] - p.x(), dy = ys[j] - p.y(), dz = zs[j] - p.z();
+                        if (dx * dx + dy * dy + dz * dz > mu2) continue;
+                        ++near;
+                        any_neighbour = any_neighbour || labels[j] >= 0;
+                        if (every_miss ? near >= cfg.min_pts : any_neighbour) break;
+                    }
+                    if (every_miss ? near >= cfg.min_pts : any_neighbour) break;
+                }
+                sparse = !any_neighbour && near < cfg.min_pts;
+                far = !any_neighbour || every_miss;
+            }
+            if (far) {
                 const double limit = sparse || !every_miss ? cfg.max_radius() : miss_limit;
                 for (std::size_t level = 0; level < radii.size() && best < 0; ++level) {
                     const double radius = std::min(radii[level], limit);
-                    last = -1;
-                    for_each_in_runs_within(index, far_runs(level), p,
-                                            static_cast<float>(radius * radius), visit);
+                    gather(level_cubes(level + 1), radius);
+                    best = best_within(radius);
+                    last_radius = radius;
                     if (radii[level] >= limit) break;
                 }
             }
-            if (best < 0 && !candidates.empty()) {
-                // The point's own scan's unregistered points within mu, or 2 mu where sparse.
-                const std::uint32_t scan = ctx.sight.scan_of(i);
-                auto gather = [&](std::span<const Range> runs, double radius) {
-                    layer.clear();
-                    for_each_in_runs_within(index, runs, p, static_cast<float>(radius * radius),
-                                            [&](std::uint32_t j) {
-                                                if (labels[j] < 0 && ctx.sight.scan_of(j) == scan)
-                                                    layer.push_back(index.local_point(j));
-                                            });
-                };
-                gather(s.runs, cfg.mu);
-                if (layer.size() < static_cast<std::size_t>(kLayerMinPoints))
-                    gather(far_runs(0), radii[0]);
-                best = attach_layer(ctx, ray, candidates, surfaces, tolerance, layer, dist);
+            if (best < 0 && layered) {
+                // Fused clouds: the surfaces of the widest search whose plane another layer of
+                // this point may be off by (at normal incidence; attach_layer applies each one's).
+                const Vec3d ray = ctx.sight.towards(i, p);
+                const double layer_reach = kLayerSigmas * ctx.layers.sigma(ray.norm());
+                const auto r2 = static_cast<float>(last_radius * last_radius);
+                s.candidates.clear();
+                for (const std::int32_t sid : s.around) {
+                    const auto k = static_cast<std::size_t>(sid);
+                    const double signed_d = surfaces[k].normal.dot(pw - surfaces[k].centroid);
+                    if (tolerance[k] >= 0 && std::abs(signed_d) <= tolerance[k] + layer_reach &&
+                        within(sid, r2))
+                        s.candidates.push_back({sid, signed_d});
+                }
+                if (!s.candidates.empty()) {
+                    // The point's own scan's unregistered points within mu, or 2 mu where sparse.
+                    const std::uint32_t scan = ctx.sight.scan_of(i);
+                    auto own_layer = [&](std::span<const NearCube> cubes, double radius) {
+                        const auto rr = static_cast<float>(radius * radius);
+                        s.layer.clear();
+                        for (const NearCube& nc : cubes)
+                            for (std::uint32_t j = index.cube_begin(nc.cube);
+                                 j < index.cube_end(nc.cube); ++j) {
+                                if (labels[j] >= 0 || ctx.sight.scan_of(j) != scan) continue;
+                                const float dx = xs[j] - p.x(), dy = ys[j] - p.y(),
+                                            dz = zs[j] - p.z();
+                                if (dx * dx + dy * dy + dz * dz <= rr)
+                                    s.layer.push_back(index.local_point(j));
+                            }
+                    };
+                    own_layer(level_cubes(0), cfg.mu);
+                    if (s.layer.size() < static_cast<std::size_t>(kLayerMinPoints))
+                        own_layer(level_cubes(1), radii[0]);
+                    best =
+                        attach_layer(ctx, ray, s.candidates, surfaces, tolerance, s.layer, s.dist);
+                }
             }
             if (best >= 0) attach.emplace_back(i, best);
         }
@@ -183,13 +328,20 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
 /// Stage 3: each point left unregistered goes to the best-fitting neighbouring surface.
 void attach_leftovers(const GrowContext& ctx, std::span<const Slab> slabs,
                       const std::vector<Surface>& surfaces, std::span<const double> tolerance,
-                      int threads, std::vector<Scratch>& scratch, std::span<std::int32_t> labels) {
+                      int threads, std::span<std::int32_t> labels) {
+    if (std::none_of(labels.begin(), labels.end(), [](std::int32_t l) { return l < 0; })) return;
+    const CubeSurfaces near_surfaces = cube_surfaces(ctx.index, labels, threads);
+    std::vector<LeftoverScratch> scratch(static_cast<std::size_t>(threads));
     std::vector<std::vector<std::pair<std::uint32_t, std::int32_t>>> attach(slabs.size());
+    ParallelErrors errors;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
     for (std::size_t s = 0; s < slabs.size(); ++s) {
-        attach_slab(ctx, slabs[s], surfaces, tolerance,
-                    scratch[static_cast<std::size_t>(omp_get_thread_num())], attach[s]);
+        errors.run(s, [&] {
+            attach_slab(ctx, slabs[s], surfaces, tolerance, near_surfaces,
+                        scratch[static_cast<std::size_t>(omp_get_thread_num())], attach[s]);
+        });
     }
+    errors.rethrow();
     for (const auto& list : attach)
         for (const auto& [i, sid] : list) labels[i] = sid;
 }

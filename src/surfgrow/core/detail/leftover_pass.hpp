@@ -13,6 +13,6 @@ namespace surfgrow::detail {
 /// Stage 3: each point left unregistered goes to the best-fitting neighbouring surface.
 void attach_leftovers(const GrowContext& ctx, std::span<const Slab> slabs,
                       const std::vector<Surface>& surfaces, std::span<const double> tolerance,
-                      int threads, std::vector<Scratch>& scratch, std::span<std::int32_t> labels);
+                      int threads, std::span<std::int32_t> labels);
 
 }  // namespace surfgrow::detail
