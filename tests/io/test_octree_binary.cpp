@@ -6,6 +6,7 @@
 #include <octomap/OcTree.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <random>
 #include <sstream>
@@ -61,6 +62,8 @@ Reference octomap_reference(double resolution, const Leaves& leaves) {
     return {tree.size(), data.str()};
 }
 
+int bitmap_checks = 0;  // how many leaf sets the bitmap form was compared on
+
 void expect_same_as_octomap(const Leaves& leaves, double resolution = 0.012) {
     std::ostringstream out;
     const std::uint64_t nodes =
@@ -73,6 +76,40 @@ void expect_same_as_octomap(const Leaves& leaves, double resolution = 0.012) {
     EXPECT_NE(bytes.find("\nsize " + std::to_string(ref.size) + "\n"), std::string::npos);
     EXPECT_TRUE(bytes.substr(at + 6) == ref.data)
         << "data differs: " << bytes.size() - at - 6 << " bytes vs " << ref.data.size();
+    // The bitmap form writes the same bytes, where the leaves' box is small enough to test.
+    std::array<std::uint32_t, 3> lo{65535, 65535, 65535}, hi{0, 0, 0};
+    for (const auto* list : {&leaves.free, &leaves.occupied})
+        for (const PackedLeafKey k : *list)
+            for (std::size_t a = 0; a < 3; ++a) {
+                lo[a] = std::min(lo[a], static_cast<std::uint32_t>((k >> (16 * a)) & 0xffff));
+                hi[a] = std::max(hi[a], static_cast<std::uint32_t>((k >> (16 * a)) & 0xffff));
+            }
+    io::LeafBitmaps b;
+    std::uint64_t volume = 1;
+    const bool any = !leaves.free.empty() || !leaves.occupied.empty();
+    for (std::size_t a = 0; a < 3 && any; ++a) {
+        const std::uint32_t step = a == 0 ? 64 : 2;
+        b.lo[a] = lo[a] / step * step;
+        b.dims[a] = (hi[a] + step) / step * step - b.lo[a];
+        volume *= b.dims[a];
+    }
+    if (any && volume <= (std::uint64_t{1} << 26)) {
+        std::vector<std::uint64_t> free_bits((volume + 63) / 64), occupied_bits(free_bits.size());
+        auto set = [&](std::vector<std::uint64_t>& bits, PackedLeafKey k) {
+            const std::uint64_t x = (k & 0xffff) - b.lo[0], y = ((k >> 16) & 0xffff) - b.lo[1],
+                                z = (k >> 32) - b.lo[2];
+            const std::uint64_t i = x + b.dims[0] * (y + std::uint64_t{b.dims[1]} * z);
+            bits[i >> 6] |= std::uint64_t{1} << (i & 63);
+        };
+        for (const PackedLeafKey k : leaves.free) set(free_bits, k);
+        for (const PackedLeafKey k : leaves.occupied) set(occupied_bits, k);
+        b.free = free_bits;
+        b.occupied = occupied_bits;
+        std::ostringstream from_bits;
+        EXPECT_EQ(io::write_octree_binary(from_bits, resolution, b), nodes);
+        EXPECT_TRUE(from_bits.str() == bytes) << "the bitmap form differs";
+        ++bitmap_checks;
+    }
     // And liboctomap reads it back.
     std::istringstream in(bytes);
     octomap::OcTree back(0.1);
@@ -135,6 +172,51 @@ TEST(OctreeBinary, ALeafListedTwiceIsAnInternalError) {
     l.occupied.push_back(key(1, 2, 3));
     std::ostringstream out;
     EXPECT_THROW((void)io::write_octree_binary(out, 0.012, l.free, l.occupied), Error);
+}
+
+TEST(OctreeBinary, TheBitmapFormMatchesOnRandomBoxesOfMixedStates) {
+    // Dense random leaves in boxes at odd offsets, with whole free and occupied blocks inside:
+    // every level of the bitmap form's pyramid meets mixed, pruned and unknown cells.
+    std::mt19937 rng(11);
+    const int before = bitmap_checks;
+    for (int trial = 0; trial < 6; ++trial) {
+        std::uniform_int_distribution<unsigned> base(1000, 60000), side(3, 70);
+        const unsigned x0 = base(rng), y0 = base(rng), z0 = base(rng);
+        const unsigned sx = side(rng), sy = side(rng), sz = side(rng);
+        std::uniform_real_distribution<double> u(0, 1);
+        const double fill = 0.1 + 0.8 * u(rng);
+        Leaves l;
+        l.block(x0 / 16 * 16 + 16, y0 / 16 * 16, z0 / 16 * 16, 16, trial % 2 == 0);
+        for (unsigned z = z0; z < z0 + sz; ++z)
+            for (unsigned y = y0; y < y0 + sy; ++y)
+                for (unsigned x = x0; x < x0 + sx; ++x) {
+                    const PackedLeafKey k = key(x, y, z);
+                    if (std::find(l.free.begin(), l.free.end(), k) != l.free.end() ||
+                        std::find(l.occupied.begin(), l.occupied.end(), k) != l.occupied.end())
+                        continue;
+                    const double r = u(rng);
+                    if (r < fill)
+                        l.free.push_back(k);
+                    else if (r < fill + 0.05)
+                        l.occupied.push_back(k);
+                }
+        expect_same_as_octomap(l);
+    }
+    EXPECT_EQ(bitmap_checks - before, 6);
+}
+
+TEST(OctreeBinary, TheBitmapFormRefusesAnUnalignedBox) {
+    std::vector<std::uint64_t> bits(4, 0);
+    io::LeafBitmaps b;
+    b.lo = {32, 0, 0};  // not a multiple of 64
+    b.dims = {64, 2, 2};
+    b.free = bits;
+    b.occupied = bits;
+    std::ostringstream out;
+    EXPECT_THROW((void)io::write_octree_binary(out, 0.012, b), Error);
+    b.lo = {64, 0, 0};
+    b.dims = {64, 2, 4};  // 8 words needed
+    EXPECT_THROW((void)io::write_octree_binary(out, 0.012, b), Error);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/core/threads.hpp"
 #include "surfgrow/io/octree_binary.hpp"
+#include "surfgrow/io/radix_sort.hpp"
 
 namespace surfgrow::io {
 
@@ -49,15 +50,18 @@ octomap::OcTreeKey unpack(std::uint64_t v) {
 
 // A set of leaf keys within a box of keys: a bitmap when the box has at most 2^29 leaves (64 MiB),
 // else a vector sorted on demand. Rays from a scanner cross the same leaves again and again, so
-// the bitmap turns millions of hash-set insertions into bit operations.
+// the bitmap turns millions of hash-set insertions into bit operations. The box is widened to
+// LeafBitmaps' alignment (rows of whole words, even on y and z), so that a dense set is written
+// from its bits.
 class LeafSet {
   public:
-    LeafSet(const std::array<std::uint64_t, 3>& lo, const std::array<std::uint64_t, 3>& hi)
-        : lo_(lo) {
+    LeafSet(const std::array<std::uint64_t, 3>& lo, const std::array<std::uint64_t, 3>& hi) {
         std::uint64_t volume = 1;
-        for (int a = 0; a < 3; ++a) {
-            dims_[a] = hi[a] - lo[a] + 1;
-            volume *= dims_[a];  // at most 2^48: no overflow
+        for (std::size_t a = 0; a < 3; ++a) {
+            const std::uint64_t step = a == 0 ? 64 : 2;
+            lo_[a] = lo[a] / step * step;
+            dims_[a] = (hi[a] + step) / step * step - lo_[a];  // hi < 2^16: within the key range
+            volume *= dims_[a];                                // at most 2^48: no overflow
         }
         dense_ = volume <= (std::uint64_t{1} << 29);
         if (dense_) bits_.assign((volume + 63) / 64, 0);
@@ -82,14 +86,25 @@ class LeafSet {
         if (!(word.load(std::memory_order_relaxed) & bit))
             word.fetch_or(bit, std::memory_order_relaxed);
     }
-    // How many keys f would see in for_each_not_in(other): to reserve for them.
-    [[nodiscard]] std::size_t count_not_in(const LeafSet& other) const {
+    // Removes every key of `other` (a dense set over the same box) from this dense set.
+    void subtract(const LeafSet& other) {
+        for (std::size_t w = 0; w < bits_.size(); ++w) bits_[w] &= ~other.bits_[w];
+    }
+    [[nodiscard]] std::size_t count() const {
         std::size_t n = 0;
-        if (dense_ && other.dense_) {
-            for (std::size_t w = 0; w < bits_.size(); ++w)
-                n += static_cast<std::size_t>(std::popcount(bits_[w] & ~other.bits_[w]));
-        }
+        for (const std::uint64_t w : bits_) n += static_cast<std::size_t>(std::popcount(w));
         return n;
+    }
+    // A dense set's bits as octree_binary reads them, with `occupied` over the same box.
+    [[nodiscard]] LeafBitmaps bitmaps(const LeafSet& occupied) const {
+        LeafBitmaps b;
+        for (std::size_t a = 0; a < 3; ++a) {
+            b.lo[a] = static_cast<std::uint32_t>(lo_[a]);
+            b.dims[a] = static_cast<std::uint32_t>(dims_[a]);
+        }
+        b.free = bits_;
+        b.occupied = occupied.bits_;
+        return b;
     }
     void finish() {
         if (dense_) return;
@@ -174,6 +189,7 @@ OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
     if (origins.known()) {
         // (origin, end leaf) of every ray: one per distinct end leaf, cast to the leaf's centre.
         std::vector<std::pair<std::uint32_t, std::uint64_t>> rays;
+        rays.reserve(cloud.size());
         for (std::size_t i = 0; i < cloud.size(); ++i) {
             if (!is_finite(cloud.points[i]) || (!ray_mask.empty() && !ray_mask[i])) continue;
             const Vec3d* o = origins.origin_of(cloud, i);
@@ -181,8 +197,22 @@ OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
             rays.emplace_back(static_cast<std::uint32_t>(o - origins.origins.data()),
                               pack(key_of(tree, cloud.points[i].cast<double>(), "a point")));
         }
-        std::sort(rays.begin(), rays.end());
-        rays.erase(std::unique(rays.begin(), rays.end()), rays.end());
+        if (origins.origins.size() <= 0xffff) {
+            // One key per ray, origin above the leaf key: a radix sort (a tenth of std::sort's
+            // time on a million rays).
+            std::vector<std::uint64_t> packed(rays.size());
+            for (std::size_t r = 0; r < rays.size(); ++r)
+                packed[r] = (std::uint64_t{rays[r].first} << 48) | rays[r].second;
+            radix_sort(packed, origins.origins.size() > 1 ? 64 : 48);
+            packed.erase(std::unique(packed.begin(), packed.end()), packed.end());
+            rays.resize(packed.size());
+            for (std::size_t r = 0; r < packed.size(); ++r)
+                rays[r] = {static_cast<std::uint32_t>(packed[r] >> 48),
+                           packed[r] & 0xffffffffffffull};
+        } else {
+            std::sort(rays.begin(), rays.end());
+            rays.erase(std::unique(rays.begin(), rays.end()), rays.end());
+        }
         // Every leaf a ray crosses lies in the box of its two end leaves.
         std::array<std::uint64_t, 3> lo{0xffff, 0xffff, 0xffff}, hi{0, 0, 0};
         auto grow_box = [&](std::uint64_t key) {
@@ -227,9 +257,22 @@ OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
                 }
             }
             summary.rays = cast;
+            if (carved.dense()) {
+                // Written from the bits: listing and sorting millions of free leaves cost 4x
+                // the rays themselves (0.6 s on four fused scans).
+                carved.subtract(blocked);
+                LeafSet occupied_set(lo, hi);
+                for (const std::uint64_t key : occupied) occupied_set.insert(key);
+                summary.free = carved.count();
+                summary.occupied = occupied.size();
+                write_octree_binary(out, grid.mu(), carved.bitmaps(occupied_set));
+                if (!out)
+                    throw Error(ErrorCode::kCannotWrite,
+                                "environment.bt: the OctoMap could not be written");
+                return summary;
+            }
             blocked.finish();
             carved.finish();
-            free.reserve(carved.count_not_in(blocked));
             carved.for_each_not_in(blocked, [&](std::uint64_t key) { free.push_back(key); });
         }
     }

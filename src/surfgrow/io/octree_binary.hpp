@@ -1,6 +1,7 @@
 // OctoMap's binary OcTree stream (.bt), written straight from leaf keys.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <ostream>
 #include <span>
@@ -22,5 +23,22 @@ using PackedLeafKey = std::uint64_t;
 std::uint64_t write_octree_binary(std::ostream& out, double resolution,
                                   std::span<const PackedLeafKey> free_leaves,
                                   std::span<const PackedLeafKey> occupied_leaves);
+
+/// Leaves given as two bitmaps over a box of keys: leaf lo + (x, y, z) is bit
+/// x + dims[0] * (y + dims[1] * z) of `free` or of `occupied` (disjoint; bit i in word i / 64 at
+/// i % 64). The box is aligned for the writer: lo[0] and dims[0] multiples of 64 (each row of
+/// leaves starts a word), lo and dims even on y and z; and it lies within the key range.
+struct LeafBitmaps {
+    std::array<std::uint32_t, 3> lo{};
+    std::array<std::uint32_t, 3> dims{};
+    std::span<const std::uint64_t> free, occupied;
+};
+
+/// The same bytes as the overload above for the leaves of `leaves`, without listing them: each
+/// level's cell states (unknown, free, occupied, mixed) are derived from the one below, 32 cells
+/// per word at the leaves, and the tree is written top-down from them. Linear in the box's
+/// volume rather than in the number of leaves: the form for rays carved through a dense box.
+/// Throws Error(kInternal) if the box is not aligned or the bitmaps are too short.
+std::uint64_t write_octree_binary(std::ostream& out, double resolution, const LeafBitmaps& leaves);
 
 }  // namespace surfgrow::io
