@@ -60,8 +60,8 @@ Case random_case(std::uint32_t seed, double mu) {
 
 // The surface that the definition gives sorted point i; -1 if none.
 std::int32_t expected_surface(const CubeIndex& index, const GrowerConfig& cfg,
-                              std::span<const std::int32_t> labels, const Case& c,
-                              std::uint32_t i) {
+                              std::span<const std::int32_t> labels, const Case& c, std::uint32_t i,
+                              std::int32_t first) {
     const Vec3f p = index.local_point(i);
     const Vec3d pw = index.origin() + p.cast<double>();
     // Per surface, its nearest member's squared distance (float, as the index measures); the
@@ -88,7 +88,7 @@ std::int32_t expected_surface(const CubeIndex& index, const GrowerConfig& cfg,
         const auto r = static_cast<float>(radius);
         std::int32_t b = -1;
         double bd = 0;
-        for (std::size_t k = 0; k < c.surfaces.size(); ++k) {
+        for (auto k = static_cast<std::size_t>(first); k < c.surfaces.size(); ++k) {
             const Surface& s = c.surfaces[k];
             const double d = std::abs(s.normal.dot(pw - s.centroid));
             if (d <= c.tolerance[k] && nearest[k] <= r * r && (b < 0 || d < bd)) {
@@ -112,7 +112,7 @@ std::int32_t expected_surface(const CubeIndex& index, const GrowerConfig& cfg,
     return b;
 }
 
-void check(std::uint32_t seed, PlaneTest test, int threads) {
+void check(std::uint32_t seed, PlaneTest test, int threads, std::int32_t first = 0) {
     GrowerConfig cfg;
     cfg.mu = 0.012;
     cfg.plane_test = test;
@@ -133,14 +133,14 @@ void check(std::uint32_t seed, PlaneTest test, int threads) {
     const std::vector<detail::Slab> slabs = {
         {0, cubes / 3}, {cubes / 3, 2 * cubes / 3}, {2 * cubes / 3, cubes}};
     detail::attach_leftovers(ctx, slabs, c.surfaces, c.tolerance, threads,
-                             std::span<std::int32_t>(labels.data(), n));
+                             std::span<std::int32_t>(labels.data(), n), first);
     int attached = 0, left = 0;
     for (std::uint32_t i = 0; i < n; ++i) {
         if (grown[i] >= 0) {
             ASSERT_EQ(labels[i], grown[i]) << "a grown point moved";
             continue;
         }
-        const std::int32_t want = expected_surface(index, cfg, grown, c, i);
+        const std::int32_t want = expected_surface(index, cfg, grown, c, i, first);
         ASSERT_EQ(labels[i], want) << "seed " << seed << ", point " << i;
         (want >= 0 ? attached : left) += 1;
     }
@@ -151,6 +151,12 @@ void check(std::uint32_t seed, PlaneTest test, int threads) {
 
 TEST(LeftoverPass, MatchesItsDefinitionByBruteForceWithTheDiskTest) {
     for (std::uint32_t seed = 1; seed <= 6; ++seed) check(seed, PlaneTest::kDisk, 2);
+}
+
+TEST(LeftoverPass, AfterStripsOnlyTheStripsTakePoints) {
+    // Surfaces 30 to 39 stand for the strips: only they may take a point, though every
+    // registered point still counts as a neighbour.
+    for (std::uint32_t seed = 21; seed <= 24; ++seed) check(seed, PlaneTest::kDisk, 2, 30);
 }
 
 TEST(LeftoverPass, MatchesItsDefinitionByBruteForceWithThePapersTest) {

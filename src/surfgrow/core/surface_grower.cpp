@@ -664,6 +664,11 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
     // 0.01-0.03 % of registration, serially (docs/algorithm.md).
     if (cfg.attach_leftovers && !sight.fused())
         st.strip_surfaces = grow_strips(ctx, result.surfaces, home_of, tolerance);
+    // ... and a strip's plane reaches beyond its ball: the points still left go to the strip
+    // they fit best, by the leftover pass's rules (no other surface fits them: the pass before).
+    if (st.strip_surfaces > 0)
+        attach_leftovers(ctx, slabs, result.surfaces, tolerance, threads, labels,
+                         static_cast<std::int32_t>(result.surfaces.size() - st.strip_surfaces));
     st.seconds.attach = stage.lap();
     report("attach", 1.0);
 

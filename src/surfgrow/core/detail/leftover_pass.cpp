@@ -92,7 +92,7 @@ struct CubeSurfaces {
 };
 
 CubeSurfaces cube_surfaces(const CubeIndex& index, std::span<const std::int32_t> labels,
-                           int threads) {
+                           std::int32_t first_surface, int threads) {
     const std::size_t cubes = index.cube_count();
     CubeSurfaces cs;
     cs.start.assign(cubes + 1, 0);
@@ -108,7 +108,8 @@ CubeSurfaces cube_surfaces(const CubeIndex& index, std::span<const std::int32_t>
                 const std::size_t first = out.size();
                 std::int32_t last = -1;
                 for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i)
-                    if (labels[i] >= 0 && labels[i] != last) out.push_back(last = labels[i]);
+                    if (labels[i] >= first_surface && labels[i] != last)
+                        out.push_back(last = labels[i]);
                 std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
                 out.erase(std::unique(out.begin() + static_cast<std::ptrdiff_t>(first), out.end()),
                           out.end());
@@ -328,9 +329,10 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
 /// Stage 3: each point left unregistered goes to the best-fitting neighbouring surface.
 void attach_leftovers(const GrowContext& ctx, std::span<const Slab> slabs,
                       const std::vector<Surface>& surfaces, std::span<const double> tolerance,
-                      int threads, std::span<std::int32_t> labels) {
+                      int threads, std::span<std::int32_t> labels, std::int32_t first_surface) {
     if (std::none_of(labels.begin(), labels.end(), [](std::int32_t l) { return l < 0; })) return;
-    const CubeSurfaces near_surfaces = cube_surfaces(ctx.index, labels, threads);
+    const CubeSurfaces near_surfaces =
+        cube_surfaces(ctx.index, labels, std::max(first_surface, 0), threads);
     std::vector<LeftoverScratch> scratch(static_cast<std::size_t>(threads));
     std::vector<std::vector<std::pair<std::uint32_t, std::int32_t>>> attach(slabs.size());
     ParallelErrors errors;

@@ -10,9 +10,11 @@
 
 namespace surfgrow::detail {
 
-/// Stage 3: each point left unregistered goes to the best-fitting neighbouring surface.
+/// Stage 3: each point left unregistered goes to the best-fitting neighbouring surface; only to
+/// surfaces numbered `first_surface` or above (after strips: the strips alone, since no other
+/// surface fits a point the first pass left).
 void attach_leftovers(const GrowContext& ctx, std::span<const Slab> slabs,
                       const std::vector<Surface>& surfaces, std::span<const double> tolerance,
-                      int threads, std::span<std::int32_t> labels);
+                      int threads, std::span<std::int32_t> labels, std::int32_t first_surface = 0);
 
 }  // namespace surfgrow::detail
