@@ -653,27 +653,28 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
     if (cfg.pool_angle_deg > 0 && surface_count > 0)
         refine_normals(cfg, index, threads, all, result.surfaces, tolerance, labels, st);
     release(all);
+    release(distance);  // best-fit registration is over: the later stages do not read it
     st.seconds.grow = stage.lap();
     for (const std::int32_t l : labels) st.registered_grown += l >= 0 ? 1 : 0;
 
     // --- Stage 3: attach leftovers to the best-fitting neighbouring surface.
+    const GrowContext late{index, cfg, labels, {}, sight, noise, layers};  // distances released
     if (cfg.attach_leftovers && surface_count > 0)
-        attach_leftovers(ctx, slabs, result.surfaces, tolerance, threads, labels);
+        attach_leftovers(late, slabs, result.surfaces, tolerance, threads, labels);
     // --- Stage 3b: strips narrower than a ball, from the points no surface fits. Not in fused
     // clouds, whose leftovers are mostly other scans' layers and mixed pixels: there strips added
     // 0.01-0.03 % of registration, serially (docs/algorithm.md).
     if (cfg.attach_leftovers && !sight.fused())
-        st.strip_surfaces = grow_strips(ctx, result.surfaces, home_of, tolerance);
+        st.strip_surfaces = grow_strips(late, result.surfaces, home_of, tolerance);
     // ... and a strip's plane reaches beyond its ball: the points still left go to the strip
     // they fit best, by the leftover pass's rules (no other surface fits them: the pass before).
     if (st.strip_surfaces > 0)
-        attach_leftovers(ctx, slabs, result.surfaces, tolerance, threads, labels,
+        attach_leftovers(late, slabs, result.surfaces, tolerance, threads, labels,
                          static_cast<std::int32_t>(result.surfaces.size() - st.strip_surfaces));
     st.seconds.attach = stage.lap();
     report("attach", 1.0);
 
     // --- Stage 4: member statistics, labels in input order, range bands, orientation.
-    release(distance);
     st.orientation = orient.source;
     st.range_known = orient.range_known();
     st.range_origin = orient.origin;
