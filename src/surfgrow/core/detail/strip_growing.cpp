@@ -22,13 +22,19 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
     const std::span<std::int32_t> labels = ctx.labels;
     const DiskTest disk = cfg.disk_test();
     const StripTest strip;
-    // The leftovers (a few per mille of the points) bucketed in cells as wide as the adaptive
-    // radius, so that a neighbourhood visits the 27 cells around its home and leftovers only. Cell
-    // coordinates wrap at 2^21: far cells that share a key only add candidates the distance test
-    // drops.
+    // The balls: from mu up to the adaptive radius in steps of sqrt(2) (a strip's ball must hold
+    // enough of it to fix its normal, yet not so much of its length that it reads as a line).
     const double max_radius = cfg.max_radius();
-    const double cell = max_radius;
-    // Cell coordinates as int64, clamped: any extent and any mu stay defined.
+    std::vector<double> radii;
+    std::vector<float> radii2;
+    for (double radius = cfg.mu; radius <= max_radius * (1 + 1e-9); radius *= std::numbers::sqrt2) {
+        radii.push_back(radius);
+        radii2.push_back(static_cast<float>(radius * radius));
+    }
+    // The leftovers (a few per mille of the points) bucketed in cells mu wide, keyed x, y, z
+    // (21 bits each, wrapping): a home gathers them ring of cells by ring as its balls grow, so a
+    // search that ends at its first balls (most do) visits only the leftovers near it.
+    const double cell = 2 * cfg.mu;
     using Cell = std::array<std::int64_t, 3>;
     auto cell_of = [&](const Vec3f& p) {
         Cell c;
@@ -37,11 +43,11 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
                 std::clamp(std::floor(static_cast<double>(p[a]) / cell), -4e18, 4e18));
         return c;
     };
-    auto key_of = [](const Cell& c, int dx, int dy, int dz) {
-        constexpr std::uint64_t mask = (std::uint64_t{1} << 21) - 1;
-        return (static_cast<std::uint64_t>(c[0] + dx) & mask) << 42 |
-               (static_cast<std::uint64_t>(c[1] + dy) & mask) << 21 |
-               (static_cast<std::uint64_t>(c[2] + dz) & mask);
+    constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
+    auto key_of = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+        return (static_cast<std::uint64_t>(x) & kMask) << 42 |
+               (static_cast<std::uint64_t>(y) & kMask) << 21 |
+               (static_cast<std::uint64_t>(z) & kMask);
     };
     struct Keyed {
         std::uint64_t key;
@@ -52,16 +58,11 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
     };
     std::vector<Keyed> left;
     for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(index.size()); ++i)
-        if (labels[i] < 0) left.push_back({key_of(cell_of(index.local_point(i)), 0, 0, 0), i});
+        if (labels[i] < 0) {
+            const Cell c = cell_of(index.local_point(i));
+            left.push_back({key_of(c[0], c[1], c[2]), i});
+        }
     std::sort(left.begin(), left.end());
-    // The balls: from mu up to the adaptive radius in steps of sqrt(2) (a strip's ball must hold
-    // enough of it to fix its normal, yet not so much of its length that it reads as a line).
-    std::vector<double> radii;
-    std::vector<float> radii2;
-    for (double radius = cfg.mu; radius <= max_radius * (1 + 1e-9); radius *= std::numbers::sqrt2) {
-        radii.push_back(radius);
-        radii2.push_back(static_cast<float>(radius * radius));
-    }
     // The smallest ball that holds a point at squared distance d2; radii.size(): none (beyond the
     // largest ball it counts for nothing).
     auto ball_of = [&](float d2) {
@@ -69,12 +70,12 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
         while (b < radii2.size() && d2 > radii2[b]) ++b;
         return b;
     };
-    struct Near {
-        std::uint32_t point;
-        std::uint32_t ball;
-    };
-    std::vector<Near> near, by_ball;
-    std::vector<std::uint32_t> first(radii.size() + 1);
+    // Rings of cells a ball of each size needs (a point within r lies within ceil(r / mu) cells).
+    std::vector<std::int64_t> ring_of(radii.size());
+    for (std::size_t b = 0; b < radii.size(); ++b)
+        ring_of[b] = static_cast<std::int64_t>(std::ceil(radii[b] / cell - 1e-9));
+    std::vector<std::vector<std::uint32_t>> in_ball(radii.size());  // per ball, its new points
+    std::vector<std::uint32_t> members;
     std::uint64_t grown = 0;
     // A home whose balls hold no strip leaves its mu-neighbours untried as homes: their balls
     // are nearly its own (without this, a cluttered room's leftovers cost seconds).
@@ -83,43 +84,62 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
     for (std::uint32_t home = 0; home < static_cast<std::uint32_t>(index.size()); ++home) {
         if (labels[home] >= 0 || tried[home]) continue;  // registered, or near a home that failed
         const Vec3f h = index.local_point(home);
-        // Every leftover within the adaptive radius, nearest first.
-        near.clear();
         const Cell c = cell_of(h);
-        for (int dx = -1; dx <= 1; ++dx)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dz = -1; dz <= 1; ++dz) {
-                    const std::uint64_t key = key_of(c, dx, dy, dz);
-                    auto it = std::lower_bound(left.begin(), left.end(), Keyed{key, 0});
-                    for (; it != left.end() && it->key == key; ++it) {
-                        if (labels[it->point] >= 0) continue;
-                        const std::size_t ball =
-                            ball_of((index.local_point(it->point) - h).squaredNorm());
-                        if (ball < radii.size())
-                            near.push_back({it->point, static_cast<std::uint32_t>(ball)});
+        for (auto& list : in_ball) list.clear();
+        // The leftovers in cells (x, y, z0 .. z1) into the balls that hold them (z may wrap at
+        // 2^21: then two ranges of keys).
+        auto gather = [&](std::int64_t x, std::int64_t y, std::int64_t z0, std::int64_t z1) {
+            auto range = [&](std::uint64_t k0, std::uint64_t k1) {
+                auto it = std::lower_bound(left.begin(), left.end(), Keyed{k0, 0});
+                for (; it != left.end() && it->key <= k1; ++it) {
+                    // The distance first: a point beyond the largest ball is not this home's
+                    // to read.
+                    const std::size_t ball =
+                        ball_of((index.local_point(it->point) - h).squaredNorm());
+                    if (ball < radii.size() && labels[it->point] < 0)
+                        in_ball[ball].push_back(it->point);
+                }
+            };
+            const std::uint64_t k0 = key_of(x, y, z0), k1 = key_of(x, y, z1);
+            if (k0 <= k1) {
+                range(k0, k1);
+            } else {
+                range(k0, key_of(x, y, kMask));
+                range(key_of(x, y, 0), k1);
+            }
+        };
+        std::int64_t gathered = -1;  // rings gathered so far
+        // Ring R of cells around c: the columns new at R whole, the inner columns' two new ends.
+        auto gather_ring = [&](std::int64_t r) {
+            if (r == 0) {
+                gather(c[0], c[1], c[2], c[2]);
+                return;
+            }
+            for (std::int64_t dx = -r; dx <= r; ++dx)
+                for (std::int64_t dy = -r; dy <= r; ++dy) {
+                    if (std::max(std::abs(dx), std::abs(dy)) == r) {
+                        gather(c[0] + dx, c[1] + dy, c[2] - r, c[2] + r);
+                    } else {
+                        gather(c[0] + dx, c[1] + dy, c[2] - r, c[2] - r);
+                        gather(c[0] + dx, c[1] + dy, c[2] + r, c[2] + r);
                     }
                 }
-        if (near.size() < static_cast<std::size_t>(cfg.min_pts)) continue;
+        };
         bool made = false;
-        // Nearest ball first (a counting sort on the smallest ball that holds each point; the
-        // gathering's order within a ball): what each larger ball adds follows what it held.
-        std::fill(first.begin(), first.end(), 0);
-        for (const Near& q : near) ++first[q.ball + 1];
-        for (std::size_t b = 1; b < first.size(); ++b) first[b] += first[b - 1];
-        by_ball.resize(near.size());
-        for (const Near& q : near) by_ball[first[q.ball]++] = q;
-        near.swap(by_ball);
         const Vec3d towards = ctx.sight.towards(home, h);
         const double range = ctx.sight.origins.empty() ? 0.0 : towards.norm();
         const Vec3d sight = ctx.sight.named ? towards : Vec3d::Zero();
         const double sigma = ctx.noise.sigma(range);
         const double max_var = cfg.thickness_sigmas * cfg.thickness_sigmas * sigma * sigma;
         Moments m;
-        std::size_t inside = 0;
+        members.clear();
         for (std::size_t ball = 0; ball < radii.size(); ++ball) {
             const double radius = radii[ball];
-            for (; inside < near.size() && near[inside].ball <= ball; ++inside)
-                m.add((index.local_point(near[inside].point) - h).cast<double>());
+            while (gathered < ring_of[ball]) gather_ring(++gathered);
+            for (const std::uint32_t q : in_ball[ball]) {
+                m.add((index.local_point(q) - h).cast<double>());
+                members.push_back(q);
+            }
             if (m.n < cfg.min_pts) continue;  // too few yet: a larger ball
             const PlaneFit fit = fit_plane(m);
             const PlaneVerdict verdict = judge_strip(disk, strip, fit.eigenvalues, m.n, fit.normal,
@@ -139,11 +159,9 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
             // Its members: the leftovers within its tolerance of its plane. (Taking points from
             // other surfaces where they fit the strip better was tried: it raised the channel's
             // p95 from 1.4 to 2.2 degrees, the strips' planes leaning into the faces beside them.)
-            for (std::size_t k = 0; k < inside; ++k) {
-                const std::uint32_t j = near[k].point;
+            for (const std::uint32_t j : members)
                 if (static_cast<double>(std::abs(normal.dot(index.local_point(j) - centre))) <= tol)
                     labels[j] = sid;
-            }
             Surface& s = surfaces.emplace_back();
             s.home = index.world_point(home);
             s.centroid = s.home + fit.centroid;
@@ -159,10 +177,7 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
             break;
         }
         if (made) continue;
-        for (const Near& q : near) {
-            if (q.ball > 0) break;  // the first ball's come first
-            tried[q.point] = true;
-        }
+        for (const std::uint32_t q : in_ball[0]) tried[q] = true;
     }
     return grown;
 }
