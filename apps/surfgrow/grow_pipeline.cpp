@@ -151,12 +151,14 @@ void write_outputs(const PointCloud& cloud, const PipelineConfig& config, GrowRu
     meta.input = input_name;
     meta.result_id = io::result_id(r.grow, grow, meta);
     io::OutputTransaction tx(out_dir, io::is_result_file);
-    const io::OccupancySummary occupancy =
-        io::stage_result(tx, cloud, config, r, meta, outputs.files);
     std::span<const std::int32_t> planes;
     if (r.planes) planes = r.planes->plane_of_patch;
-    stage_surfaces_pictures(tx, r.grow.surfaces, r.grow.stats, planes, units.name, grow.threads,
-                            outputs.picture, outputs.close_up);
+    // The pictures are drawn while environment.bt's rays are cast.
+    const io::OccupancySummary occupancy =
+        io::stage_result(tx, cloud, config, r, meta, outputs.files, [&] {
+            stage_surfaces_pictures(tx, r.grow.surfaces, r.grow.stats, planes, units.name,
+                                    grow.threads, outputs.picture, outputs.close_up);
+        });
     run.write_seconds = watch.seconds();
 
     if (r.planes) run.robot.planes = planes_summary(*r.planes, units.name);

@@ -103,14 +103,17 @@ OccupancySummary stage_occupancy_files(OutputTransaction& tx, const OccupancyGri
 
 OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,
                               const PipelineConfig& config, const PipelineResult& result,
-                              const ResultMeta& meta, const ResultFiles& files) {
+                              const ResultMeta& meta, const ResultFiles& files,
+                              const std::function<void()>& meanwhile) {
     const GrowResult& r = result.grow;
     // environment.bt's rays take longest of the outputs and need none of the others: with more
-    // than one thread they are cast while the other files are written.
+    // than one thread they are cast while the caller's files (the pictures) and the others are
+    // written.
     std::future<OctomapBytes> octomap;
     if (result.occupancy && files.octomap && resolve_threads(config.grow.threads) > 1)
         octomap = std::async(std::launch::async,
                              [&] { return octomap_bytes(*result.occupancy, cloud, config.grow); });
+    if (meanwhile) meanwhile();
     tx.add("surfaces.ply", [&](std::ostream& o) { write_surfaces_ply(o, r.surfaces, meta); });
     tx.add("surfaces.json", [&](std::ostream& o) { write_result_json(o, r, config.grow, meta); });
     if (files.labels) tx.add(kLabelsFile, [&](std::ostream& o) { write_labels_bin(o, r.labels); });

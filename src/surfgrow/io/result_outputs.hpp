@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string_view>
 
@@ -55,9 +56,12 @@ struct OccupancySummary {
 /// surfaces.json and, as `files` and the result have them, labels.bin/.txt, surfaces.csv, planes.*,
 /// coverage.*, occupancy.*, environment.bt, collision_spheres.*. Returns what the occupancy
 /// outputs found (zero when there is no grid).
+/// `meanwhile` (the caller's own files, e.g. the pictures) runs while environment.bt's rays are
+/// cast on another thread, before the other files are staged.
 OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,
                               const PipelineConfig& config, const PipelineResult& result,
-                              const ResultMeta& meta, const ResultFiles& files = {});
+                              const ResultMeta& meta, const ResultFiles& files = {},
+                              const std::function<void()>& meanwhile = {});
 
 /// Stages planes.json, planes.ply and, with `obj`, planes.obj; drops what the new planes make
 /// stale (planes.obj without `obj`, coverage.*, eval.json) unless staged again.
