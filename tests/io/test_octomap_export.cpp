@@ -248,5 +248,35 @@ TEST(OctomapExport, CellsBeyondOctomapsRangeAreAClearError) {
     }
 }
 
+TEST(OctomapExport, ARayEndBeyondTheRangeNamesTheFirstSuchPoint) {
+    // The room corner's points with two far strays appended (not registered, so not in the
+    // grid): the rays are collected in parallel chunks, and the error still names the first.
+    const RoomCorner& rc = room_corner();
+    ASSERT_GT(rc.cloud.size(), 65536u);  // enough for parallel chunks
+    PointCloud cloud = rc.cloud;
+    cloud.points.insert(cloud.points.begin() + 1000, Vec3f(0.5f, 0.25f, 900.0f));
+    cloud.points.push_back({0.5f, -700.0f, 0.25f});
+    if (!cloud.scan_index.empty()) {
+        cloud.scan_index.insert(cloud.scan_index.begin() + 1000, 0u);
+        cloud.scan_index.push_back(0u);
+    }
+    SensorOrigins one;
+    one.source = SensorOrigins::Source::kViewpoint;
+    one.origins = {rc.origin};
+    for (const int threads : {1, 2}) {
+        std::ostringstream out;
+        try {
+            (void)io::write_octomap_bt(out, rc.grid, cloud, {}, one, threads);
+            FAIL() << "no error";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.code(), ErrorCode::kCloudTooLarge);
+            const std::string what = e.what();
+            EXPECT_NE(what.find("a point"), std::string::npos) << what;
+            EXPECT_NE(what.find("900"), std::string::npos) << what;
+            EXPECT_EQ(what.find("-700"), std::string::npos) << what;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace surfgrow

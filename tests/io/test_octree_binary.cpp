@@ -1,7 +1,8 @@
 // write_octree_binary: the bytes liboctomap itself writes for the same leaves (set to their
 // clamping values, maximum likelihood, pruned), on leaf sets built to exercise pruning: whole
 // aligned blocks of one state, blocks with one odd leaf, scattered leaves, the ends of the key
-// range and the frame origin, where the root's children meet.
+// range and the frame origin, where the root's children meet; and write_octree_bitmaps, the same
+// tree from bitmaps over a box of leaves, against the sorted form.
 #include <gtest/gtest.h>
 #include <octomap/OcTree.h>
 
@@ -106,8 +107,11 @@ void expect_same_as_octomap(const Leaves& leaves, double resolution = 0.012) {
         b.free = free_bits;
         b.occupied = occupied_bits;
         std::ostringstream from_bits;
-        EXPECT_EQ(io::write_octree_binary(from_bits, resolution, b), nodes);
+        EXPECT_EQ(io::write_octree_bitmaps(from_bits, resolution, b), nodes);
         EXPECT_TRUE(from_bits.str() == bytes) << "the bitmap form differs";
+        std::ostringstream on_two;  // the bottom level split between threads
+        (void)io::write_octree_bitmaps(on_two, resolution, b, 2);
+        EXPECT_TRUE(on_two.str() == bytes) << "the bitmap form differs on two threads";
         ++bitmap_checks;
     }
     // And liboctomap reads it back.
@@ -213,10 +217,10 @@ TEST(OctreeBinary, TheBitmapFormRefusesAnUnalignedBox) {
     b.free = bits;
     b.occupied = bits;
     std::ostringstream out;
-    EXPECT_THROW((void)io::write_octree_binary(out, 0.012, b), Error);
+    EXPECT_THROW((void)io::write_octree_bitmaps(out, 0.012, b), Error);
     b.lo = {64, 0, 0};
     b.dims = {64, 2, 4};  // 8 words needed
-    EXPECT_THROW((void)io::write_octree_binary(out, 0.012, b), Error);
+    EXPECT_THROW((void)io::write_octree_bitmaps(out, 0.012, b), Error);
 }
 
 }  // namespace

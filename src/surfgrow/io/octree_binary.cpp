@@ -106,7 +106,7 @@ void write_stream(std::ostream& out, double resolution, std::uint64_t nodes,
 // (a cell wholly free or wholly occupied is one leaf, one without leaves unknown).
 class LevelStates {
   public:
-    explicit LevelStates(const LeafBitmaps& leaves) : leaves_(leaves) {
+    LevelStates(const LeafBitmaps& leaves, int threads) : leaves_(leaves) {
         const auto& lo = leaves.lo;
         const auto& dims = leaves.dims;
         if (lo[0] % 64 || dims[0] % 64 || lo[1] % 2 || lo[2] % 2 || dims[1] % 2 || dims[2] % 2)
@@ -118,7 +118,7 @@ class LevelStates {
         if (leaves.free.size() < words || leaves.occupied.size() < words)
             throw Error(ErrorCode::kInternal, "environment.bt: the leaf bitmaps are too short");
         row_words_ = dims[0] / 64;
-        leaves_from_bitmaps();
+        leaves_from_bitmaps(threads);
         for (int level = 2; level <= kDepth; ++level) from_level_below(level);
     }
 
@@ -176,7 +176,7 @@ class LevelStates {
 
     // Level 1 from the bitmaps: the 2 x 2 leaves of a cell in y and z are four rows, and its 2
     // leaves in x a pair of bits in each, so one word of each row gives 32 cells.
-    void leaves_from_bitmaps() {
+    void leaves_from_bitmaps(int threads) {
         const auto& dims = leaves_.dims;
         Level& l = levels_[1];
         for (int a = 0; a < 3; ++a) {
@@ -185,6 +185,8 @@ class LevelStates {
         }
         l.state.assign(std::size_t{l.dims[0]} * l.dims[1] * l.dims[2], kUnknown);
         constexpr std::uint64_t kEven = 0x5555555555555555ull;
+        // Each layer of cells writes its own bytes: any thread count gives the same states.
+#pragma omp parallel for num_threads(std::max(threads, 1)) schedule(static)
         for (std::uint32_t cz = 0; cz < l.dims[2]; ++cz)
             for (std::uint32_t cy = 0; cy < l.dims[1]; ++cy) {
                 std::size_t rows[4];
@@ -275,8 +277,9 @@ std::uint64_t write_octree_binary(std::ostream& out, double resolution,
     return nodes;
 }
 
-std::uint64_t write_octree_binary(std::ostream& out, double resolution, const LeafBitmaps& leaves) {
-    const LevelStates levels(leaves);
+std::uint64_t write_octree_bitmaps(std::ostream& out, double resolution, const LeafBitmaps& leaves,
+                                   int threads) {
+    const LevelStates levels(leaves, threads);
     std::string data;
     std::uint64_t nodes = 0;
     if (levels.root() != kUnknown) {

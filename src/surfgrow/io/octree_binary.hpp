@@ -34,11 +34,13 @@ struct LeafBitmaps {
     std::span<const std::uint64_t> free, occupied;
 };
 
-/// The same bytes as the overload above for the leaves of `leaves`, without listing them: each
+/// The same bytes as write_octree_binary for the leaves of `leaves`, without listing them: each
 /// level's cell states (unknown, free, occupied, mixed) are derived from the one below, 32 cells
 /// per word at the leaves, and the tree is written top-down from them. Linear in the box's
 /// volume rather than in the number of leaves: the form for rays carved through a dense box.
-/// Throws Error(kInternal) if the box is not aligned or the bitmaps are too short.
-std::uint64_t write_octree_binary(std::ostream& out, double resolution, const LeafBitmaps& leaves);
+/// The bottom level is derived on `threads` threads (the same bytes for any number). Throws
+/// Error(kInternal) if the box is not aligned or the bitmaps are too short.
+std::uint64_t write_octree_bitmaps(std::ostream& out, double resolution, const LeafBitmaps& leaves,
+                                   int threads = 1);
 
 }  // namespace surfgrow::io
