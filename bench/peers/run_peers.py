@@ -843,7 +843,8 @@ def main():
     ap.add_argument("--mem-limit-gb", type=float, default=10.0)
     ap.add_argument("--min-seconds", type=float, default=1.0)
     ap.add_argument("--max-repeats", type=int, default=5)
-    ap.add_argument("--rerun", action="store_true", help="ignore results already in WORK")
+    ap.add_argument("--rerun", action="store_true",
+                    help="redo runs already in WORK (with --only, only those tools' runs)")
     ap.add_argument("--report-only", action="store_true", help="rewrite the report from WORK")
     ap.add_argument("--command", default=None, help="the command line to print in the report")
     a = ap.parse_args()
@@ -856,7 +857,10 @@ def main():
     report = Path(a.report) if a.report else (work / "BENCHMARK.md" if a.quick
                                               else ROOT / "BENCHMARK.md")
     rfile = work / "results.json"
-    results = json.loads(rfile.read_text()) if rfile.exists() and not a.rerun else {}
+    # --rerun redoes the runs it selects: all of them, or with --only those tools' alone (the other
+    # tools' results are kept, so the report still compares against them).
+    fresh = a.rerun and not a.only
+    results = json.loads(rfile.read_text()) if rfile.exists() and not fresh else {}
     results.setdefault("runs", {})
     results["machine"] = machine()
     if not a.report_only or "command" not in results:
