@@ -182,6 +182,40 @@ TEST(OctomapExport, FreeLeavesAreExactlyOctomapsRaysLessTheOccupiedAndEndLeaves)
     EXPECT_EQ(leaves(tree, false), expected);
 }
 
+TEST(OctomapExport, ABoxTooLargeForABitmapGivesTheSameLeavesFromSortedKeys) {
+    // Three strays 30 m away stretch the rays' box to about 1500^3 leaves, beyond the bitmap's
+    // 2^29: the free leaves are then kept as sorted keys, and must still be OctoMap's rays less
+    // the occupied and end leaves. Every finite point casts a ray (no mask).
+    const RoomCorner& rc = room_corner();
+    PointCloud cloud = rc.cloud;
+    const Vec3f o = rc.origin.cast<float>();
+    for (const Vec3f& d : {Vec3f(30, 0, 0), Vec3f(0, 30, 0), Vec3f(0, 0, 30)})
+        cloud.points.push_back(o + d);
+    if (!cloud.scan_index.empty()) cloud.scan_index.resize(cloud.points.size(), 0u);
+    SensorOrigins one;
+    one.source = SensorOrigins::Source::kViewpoint;
+    one.origins = {rc.origin};
+    std::ostringstream out;
+    (void)io::write_octomap_bt(out, rc.grid, cloud, {}, one, 2);
+    const octomap::OcTree tree = load(out.str());
+    const octomap::point3d from(o.x(), o.y(), o.z());
+    std::set<KeyTuple> ends, crossed;
+    octomap::KeyRay ray;
+    for (const Vec3f& p : cloud.points) {
+        const octomap::OcTreeKey end = tree.coordToKey(p.x(), p.y(), p.z());
+        if (!ends.insert({end[0], end[1], end[2]}).second) continue;
+        ASSERT_TRUE(tree.computeRayKeys(from, tree.keyToCoord(end), ray));
+        for (const octomap::OcTreeKey& k : ray) crossed.insert({k[0], k[1], k[2]});
+    }
+    const std::set<KeyTuple> occupied = leaves(tree, true);
+    EXPECT_EQ(occupied.size(), rc.grid.size());
+    std::set<KeyTuple> expected;
+    for (const KeyTuple& k : crossed)
+        if (!occupied.count(k) && !ends.count(k)) expected.insert(k);
+    ASSERT_GT(expected.size(), 10000u);
+    EXPECT_EQ(leaves(tree, false), expected);
+}
+
 TEST(OctomapExport, WithoutOriginsOnlyOccupiedCells) {
     const RoomCorner& rc = room_corner();
     io::OctomapSummary summary;

@@ -113,44 +113,15 @@ class LeafSet {
         keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());
         sorted_ = keys_.size();
     }
-    [[nodiscard]] bool contains(std::uint64_t key) const {
-        if (!dense_) return std::binary_search(keys_.begin(), keys_.end(), key);
-        const std::uint64_t i = index(key);
-        return (bits_[i >> 6] >> (i & 63)) & 1;
-    }
-    // f(key) for every key in this set and not in `other` (a set over the same box), in
-    // ascending order of the box's linear index.
+    // The sorted form (a dense set is written from its bits): f(key) for every key of this set
+    // not in `other`, in ascending order; both finish()ed.
     template <class F>
     void for_each_not_in(const LeafSet& other, F&& f) const {
-        if (!dense_ || !other.dense_) {
-            for_each([&](std::uint64_t k) {
-                if (!other.contains(k)) f(k);
-            });
-            return;
-        }
-        for (std::size_t w = 0; w < bits_.size(); ++w)
-            for_each_in_word(w, bits_[w] & ~other.bits_[w], f);
-    }
-    template <class F>
-    void for_each(F&& f) const {
-        if (!dense_) {
-            for (const std::uint64_t k : keys_) f(k);
-            return;
-        }
-        for (std::size_t w = 0; w < bits_.size(); ++w) for_each_in_word(w, bits_[w], f);
+        for (const std::uint64_t k : keys_)
+            if (!std::binary_search(other.keys_.begin(), other.keys_.end(), k)) f(k);
     }
 
   private:
-    template <class F>
-    void for_each_in_word(std::size_t w, std::uint64_t bits, F&& f) const {
-        for (std::uint64_t word = bits; word; word &= word - 1) {
-            std::uint64_t i = w * 64 + static_cast<std::uint64_t>(std::countr_zero(word));
-            const std::uint64_t x = i % dims_[0];
-            i /= dims_[0];
-            const std::uint64_t y = i % dims_[1], z = i / dims_[1];
-            f((lo_[0] + x) | ((lo_[1] + y) << 16) | ((lo_[2] + z) << 32));
-        }
-    }
     [[nodiscard]] std::uint64_t index(std::uint64_t key) const {
         const std::uint64_t x = (key & 0xffff) - lo_[0], y = ((key >> 16) & 0xffff) - lo_[1],
                             z = (key >> 32) - lo_[2];
@@ -186,7 +157,8 @@ OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
     if (std::adjacent_find(occupied.begin(), occupied.end()) != occupied.end())
         throw Error(ErrorCode::kInternal, "environment.bt: two cubes share an OctoMap leaf");
 
-    std::vector<std::uint64_t> free;
+    std::vector<std::uint64_t> free;  // the sorted form's free leaves
+    bool written = false;             // the dense form writes as it goes
     if (origins.known()) {
         // (origin, end leaf) of every ray: one per distinct end leaf, cast to the leaf's centre.
         std::vector<std::pair<std::uint32_t, std::uint64_t>> rays;
@@ -292,25 +264,24 @@ OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
                 LeafSet occupied_set(lo, hi);
                 for (const std::uint64_t key : occupied) occupied_set.insert(key);
                 summary.free = carved.count();
-                summary.occupied = occupied.size();
                 write_octree_bitmaps(out, grid.mu(), carved.bitmaps(occupied_set),
                                      resolve_threads(threads));
-                if (!out)
-                    throw Error(ErrorCode::kCannotWrite,
-                                "environment.bt: the OctoMap could not be written");
-                return summary;
+                written = true;
+            } else {
+                blocked.finish();
+                carved.finish();
+                carved.for_each_not_in(blocked, [&](std::uint64_t key) { free.push_back(key); });
             }
-            blocked.finish();
-            carved.finish();
-            carved.for_each_not_in(blocked, [&](std::uint64_t key) { free.push_back(key); });
         }
     }
 
-    write_octree_binary(out, grid.mu(), free, occupied);
+    if (!written) {
+        write_octree_binary(out, grid.mu(), free, occupied);
+        summary.free = free.size();
+    }
     if (!out)
         throw Error(ErrorCode::kCannotWrite, "environment.bt: the OctoMap could not be written");
     summary.occupied = occupied.size();
-    summary.free = free.size();
     return summary;
 }
 

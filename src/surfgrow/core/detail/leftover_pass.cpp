@@ -190,6 +190,11 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
             if (labels[i] >= 0) continue;
             const Vec3f p = index.local_point(i);
             const Vec3d pw = index.origin() + p.cast<double>();
+            // Whether point j lies within squared distance r2 of p (float, as the SIMD kernels).
+            auto near_p = [&](std::uint32_t j, float r2) {
+                const float dx = xs[j] - p.x(), dy = ys[j] - p.y(), dz = zs[j] - p.z();
+                return dx * dx + dy * dy + dz * dz <= r2;
+            };
             // A cube whose box lies farther than the radius holds no point within it. The margin
             // covers the rounding of float coordinates and box corners: it only keeps a cube in.
             const float margin =
@@ -225,9 +230,7 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
                     if (!near_surfaces.holds(nc->cube, sid)) continue;
                     for (std::uint32_t j = index.cube_begin(nc->cube); j < index.cube_end(nc->cube);
                          ++j) {
-                        if (labels[j] != sid) continue;
-                        const float dx = xs[j] - p.x(), dy = ys[j] - p.y(), dz = zs[j] - p.z();
-                        if (dx * dx + dy * dy + dz * dz <= r2) return true;
+                        if (labels[j] == sid && near_p(j, r2)) return true;
                     }
                 }
                 return false;
@@ -258,17 +261,14 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
             if (best < 0) {
                 int near = 0;  // points within mu, registered or not
                 bool any_neighbour = false;
-                for (const NearCube* nc : s.reach) {
-                    for (std::uint32_t j = index.cube_begin(nc->cube); j < index.cube_end(nc->cube);
-                         ++j) {
-                        const float dx = xs[j] - p.x(), dy = ys[j] - p.y(), dz = zs[j] - p.z();
-                        if (dx * dx + dy * dy + dz * dz > mu2) continue;
-                        ++near;
-                        any_neighbour = any_neighbour || labels[j] >= 0;
-                        if (every_miss ? near >= cfg.min_pts : any_neighbour) break;
-                    }
-                    if (every_miss ? near >= cfg.min_pts : any_neighbour) break;
-                }
+                auto known = [&] { return every_miss ? near >= cfg.min_pts : any_neighbour; };
+                for (std::size_t k = 0; k < s.reach.size() && !known(); ++k)
+                    for (std::uint32_t j = index.cube_begin(s.reach[k]->cube);
+                         j < index.cube_end(s.reach[k]->cube) && !known(); ++j)
+                        if (near_p(j, mu2)) {
+                            ++near;
+                            any_neighbour = any_neighbour || labels[j] >= 0;
+                        }
                 sparse = !any_neighbour && near < cfg.min_pts;
                 far = !any_neighbour || every_miss;
             }
@@ -305,10 +305,7 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
                         for (const NearCube& nc : cubes)
                             for (std::uint32_t j = index.cube_begin(nc.cube);
                                  j < index.cube_end(nc.cube); ++j) {
-                                if (labels[j] >= 0 || ctx.sight.scan_of(j) != scan) continue;
-                                const float dx = xs[j] - p.x(), dy = ys[j] - p.y(),
-                                            dz = zs[j] - p.z();
-                                if (dx * dx + dy * dy + dz * dz <= rr)
+                                if (labels[j] < 0 && ctx.sight.scan_of(j) == scan && near_p(j, rr))
                                     s.layer.push_back(index.local_point(j));
                             }
                     };

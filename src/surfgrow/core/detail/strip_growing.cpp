@@ -31,7 +31,7 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
         radii.push_back(radius);
         radii2.push_back(static_cast<float>(radius * radius));
     }
-    // The leftovers (a few per mille of the points) bucketed in cells mu wide, keyed x, y, z
+    // The leftovers (a few per mille of the points) bucketed in cells 2 mu wide, keyed x, y, z
     // (21 bits each, wrapping): a home gathers them ring of cells by ring as its balls grow, so a
     // search that ends at its first balls (most do) visits only the leftovers near it.
     const double cell = 2 * cfg.mu;
@@ -70,7 +70,8 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
         while (b < radii2.size() && d2 > radii2[b]) ++b;
         return b;
     };
-    // Rings of cells a ball of each size needs (a point within r lies within ceil(r / mu) cells).
+    // Rings of cells a ball of each size needs (a point within r lies within ceil(r / cell) rings;
+    // cells of mu made the channel's sparse leftovers look up too many empty ones).
     std::vector<std::int64_t> ring_of(radii.size());
     for (std::size_t b = 0; b < radii.size(); ++b)
         ring_of[b] = static_cast<std::int64_t>(std::ceil(radii[b] / cell - 1e-9));
