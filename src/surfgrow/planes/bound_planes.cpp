@@ -303,18 +303,23 @@ void check_grow_result(const CloudView& cloud, std::span<const Surface> surfaces
 // patches with members. Returns the median patch thickness sqrt(lambda_min): the cloud's noise.
 double patch_moments(std::span<const Vec3f> points, std::span<const Surface> surfaces,
                      const PatchMembers& members, std::vector<CentredMoments>& moments,
-                     std::vector<std::uint8_t>& used) {
-    std::vector<double> thickness;
-    for (std::size_t s = 0; s < surfaces.size(); ++s) {
+                     std::vector<std::uint8_t>& used, int threads) {
+    // Each patch's sums in its members' order, whichever thread: the same bits for any count.
+    const auto ns = static_cast<std::ptrdiff_t>(surfaces.size());
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
+    for (std::ptrdiff_t k = 0; k < ns; ++k) {
+        const auto s = static_cast<std::size_t>(k);
         const auto idx = members.of(s);
         if (idx.empty()) continue;
         used[s] = 1;
-        thickness.push_back(std::sqrt(std::max(surfaces[s].eigenvalues[0], 0.0)));
         Moments about_home;
         for (const std::uint32_t i : idx)
             about_home.add(points[i].cast<double>() - surfaces[s].home);
         moments[s] = CentredMoments::of(about_home, surfaces[s].home);
     }
+    std::vector<double> thickness;
+    for (std::size_t s = 0; s < surfaces.size(); ++s)
+        if (used[s]) thickness.push_back(std::sqrt(std::max(surfaces[s].eigenvalues[0], 0.0)));
     return median_of(std::move(thickness));
 }
 
@@ -594,7 +599,7 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
     const PatchMembers members = collect_patch_members(cloud.points, labels, ns);
     std::vector<CentredMoments> moments(ns);
     std::vector<std::uint8_t> used(ns, 0);
-    out.stats.noise = patch_moments(cloud.points, surfaces, members, moments, used);
+    out.stats.noise = patch_moments(cloud.points, surfaces, members, moments, used, threads);
     resolve_defaults(cfg, out.stats.noise);
     if (ns == 0 || members.index.empty()) return out;
 

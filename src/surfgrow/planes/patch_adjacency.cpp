@@ -129,7 +129,9 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_patch_pairs(
     const std::size_t ns = surfaces.size();
     std::vector<Aabb> box(ns), ball(ns);
     std::vector<std::uint8_t> with_members(ns, 0);
-    for (std::size_t s = 0; s < ns; ++s) {
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(ns); ++k) {
+        const auto s = static_cast<std::size_t>(k);
         if (members.of(s).empty()) continue;
         with_members[s] = 1;
         for (const std::uint32_t i : members.of(s)) box[s].add(points[i].cast<double>());
