@@ -134,9 +134,12 @@ struct NearCube {
 struct LeftoverScratch {
     std::vector<Range> runs;                                   // of cubes
     std::array<std::vector<NearCube>, kFarLevels + 1> levels;  // [0]: within mu; then far levels
-    std::vector<const NearCube*> reach;                        // the cubes a ball may touch
-    std::vector<std::int32_t> around;                          // the surfaces in them
-    std::vector<std::uint32_t> seen;                           // per surface: last search's stamp
+    // Per level, the surfaces in its cubes (once per cube, for all its leftovers) and whether
+    // they are listed yet.
+    std::array<std::vector<std::int32_t>, kFarLevels + 1> level_surfaces;
+    std::array<bool, kFarLevels + 1> listed{};
+    std::vector<const NearCube*> reach;  // the cubes a ball may touch
+    std::vector<std::uint32_t> seen;     // per surface: last listing's stamp
     std::uint32_t stamp = 0;
     std::vector<std::pair<double, std::int32_t>> fitting;
     std::vector<Candidate> candidates;
@@ -147,7 +150,9 @@ struct LeftoverScratch {
 /// Leftover pass: for each unregistered point, the neighbouring surface whose plane it fits best.
 /// Reads only labels fixed by growing and writes to `attach`, so slabs can run in any order.
 /// A surface is a neighbour at radius r if one of its points lies within r: the best-fitting of
-/// those is the same as a visit of every point within r would find (ties by surface id).
+/// those is the same as a visit of every point within r would find (ties by surface id). The
+/// surfaces around a cube are listed once for all its leftovers; each leftover's box test runs
+/// only on the cubes that hold a surface it fits (and, for counting, on those it must scan).
 void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Surface>& surfaces,
                  std::span<const double> tolerance, const CubeSurfaces& near_surfaces,
                  LeftoverScratch& s, std::vector<std::pair<std::uint32_t, std::int32_t>>& attach) {
@@ -172,7 +177,11 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
     const bool layered = every_miss && ctx.sight.fused() && ctx.layers.known() && !radii.empty();
     if (s.seen.size() != surfaces.size()) s.seen.assign(surfaces.size(), 0);
     for (std::uint32_t c = slab.cube_begin; c < slab.cube_end; ++c) {
+        std::uint32_t i = index.cube_begin(c);
+        while (i < index.cube_end(c) && labels[i] >= 0) ++i;
+        if (i == index.cube_end(c)) continue;  // no leftover here
         for (auto& level : s.levels) level.clear();
+        s.listed.fill(false);
         // The cubes of search level `level` around cube c (0: within mu), looked up on first use.
         auto level_cubes = [&](std::size_t level) -> std::span<const NearCube> {
             std::vector<NearCube>& out = s.levels[level];
@@ -186,7 +195,26 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
                     out.push_back({k, (index.grid_coords(k) * index.cube_size()).cast<float>()});
             return out;
         };
-        for (std::uint32_t i = index.cube_begin(c); i < index.cube_end(c); ++i) {
+        // The surfaces of the cubes of a level, in the order first met (the search sorts them).
+        auto level_surfaces = [&](std::size_t level) -> const std::vector<std::int32_t>& {
+            std::vector<std::int32_t>& out = s.level_surfaces[level];
+            if (s.listed[level]) return out;
+            s.listed[level] = true;
+            out.clear();
+            if (++s.stamp == 0) {  // wrapped: forget every earlier stamp
+                std::fill(s.seen.begin(), s.seen.end(), 0);
+                s.stamp = 1;
+            }
+            for (const NearCube& nc : level_cubes(level))
+                for (const std::int32_t sid : near_surfaces.of(nc.cube)) {
+                    std::uint32_t& mark = s.seen[static_cast<std::size_t>(sid)];
+                    if (mark == s.stamp) continue;
+                    mark = s.stamp;
+                    out.push_back(sid);
+                }
+            return out;
+        };
+        for (; i < index.cube_end(c); ++i) {
             if (labels[i] >= 0) continue;
             const Vec3f p = index.local_point(i);
             const Vec3d pw = index.origin() + p.cast<double>();
@@ -199,36 +227,40 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
             // covers the rounding of float coordinates and box corners: it only keeps a cube in.
             const float margin =
                 0.01f * cube + 1e-6f * (std::abs(p.x()) + std::abs(p.y()) + std::abs(p.z()));
-            auto gather = [&](std::span<const NearCube> cubes, double radius) {
-                const float reach = static_cast<float>(radius) + margin;
+            // A cube whose box lies within `reach` of p (the box test).
+            auto touches = [&](const NearCube& nc, float reach) {
+                float d2 = 0;
+                for (int a = 0; a < 3; ++a) {
+                    const float lo = nc.low[a] - p[a], hi = p[a] - (nc.low[a] + cube);
+                    const float d = std::max({lo, hi, 0.f});
+                    d2 += d * d;
+                }
+                return d2 <= reach * reach;
+            };
+            // The search at `radius` over the cubes of `level`: the surfaces listed there (some
+            // may lie beyond the radius: `within` finds no member of those) and, on demand, the
+            // cubes that the ball may touch.
+            std::size_t at_level = 0;
+            float at_reach = 0;
+            bool reach_known = false;
+            auto gather = [&](std::size_t level, double radius) {
+                at_level = level;
+                at_reach = static_cast<float>(radius) + margin;
+                reach_known = false;
+            };
+            auto reach_cubes = [&]() -> const std::vector<const NearCube*>& {
+                if (reach_known) return s.reach;
+                reach_known = true;
                 s.reach.clear();
-                s.around.clear();
-                if (++s.stamp == 0) {  // wrapped: forget every earlier stamp
-                    std::fill(s.seen.begin(), s.seen.end(), 0);
-                    s.stamp = 1;
-                }
-                for (const NearCube& nc : cubes) {
-                    float d2 = 0;
-                    for (int a = 0; a < 3; ++a) {
-                        const float lo = nc.low[a] - p[a], hi = p[a] - (nc.low[a] + cube);
-                        const float d = std::max({lo, hi, 0.f});
-                        d2 += d * d;
-                    }
-                    if (d2 > reach * reach) continue;
-                    s.reach.push_back(&nc);
-                    for (const std::int32_t sid : near_surfaces.of(nc.cube)) {
-                        std::uint32_t& mark = s.seen[static_cast<std::size_t>(sid)];
-                        if (mark == s.stamp) continue;
-                        mark = s.stamp;
-                        s.around.push_back(sid);
-                    }
-                }
+                for (const NearCube& nc : level_cubes(at_level))
+                    if (touches(nc, at_reach)) s.reach.push_back(&nc);
+                return s.reach;
             };
             // Whether surface sid has a point within the radius of the last gather().
             auto within = [&](std::int32_t sid, float r2) {
-                for (const NearCube* nc : s.reach) {
-                    if (!near_surfaces.holds(nc->cube, sid)) continue;
-                    for (std::uint32_t j = index.cube_begin(nc->cube); j < index.cube_end(nc->cube);
+                for (const NearCube& nc : level_cubes(at_level)) {
+                    if (!near_surfaces.holds(nc.cube, sid) || !touches(nc, at_reach)) continue;
+                    for (std::uint32_t j = index.cube_begin(nc.cube); j < index.cube_end(nc.cube);
                          ++j) {
                         if (labels[j] == sid && near_p(j, r2)) return true;
                     }
@@ -238,7 +270,7 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
             // The best-fitting surface within `radius` among the cubes gathered; -1 if none.
             auto best_within = [&](double radius) {
                 s.fitting.clear();
-                for (const std::int32_t sid : s.around) {
+                for (const std::int32_t sid : level_surfaces(at_level)) {
                     const auto k = static_cast<std::size_t>(sid);
                     const double d = std::abs(surfaces[k].normal.dot(pw - surfaces[k].centroid));
                     if (d <= tolerance[k]) s.fitting.emplace_back(d, sid);
@@ -250,7 +282,7 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
                 return std::int32_t{-1};
             };
             const auto mu2 = static_cast<float>(cfg.mu * cfg.mu);
-            gather(level_cubes(0), cfg.mu);
+            gather(0, cfg.mu);
             std::int32_t best = best_within(cfg.mu);
             double last_radius = cfg.mu;
             // Sparse at mu: as far as the adaptive radius reaches. Dense but fitting nothing here
@@ -262,9 +294,10 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
                 int near = 0;  // points within mu, registered or not
                 bool any_neighbour = false;
                 auto known = [&] { return every_miss ? near >= cfg.min_pts : any_neighbour; };
-                for (std::size_t k = 0; k < s.reach.size() && !known(); ++k)
-                    for (std::uint32_t j = index.cube_begin(s.reach[k]->cube);
-                         j < index.cube_end(s.reach[k]->cube) && !known(); ++j)
+                const std::vector<const NearCube*>& reach = reach_cubes();
+                for (std::size_t k = 0; k < reach.size() && !known(); ++k)
+                    for (std::uint32_t j = index.cube_begin(reach[k]->cube);
+                         j < index.cube_end(reach[k]->cube) && !known(); ++j)
                         if (near_p(j, mu2)) {
                             ++near;
                             any_neighbour = any_neighbour || labels[j] >= 0;
@@ -276,7 +309,7 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
                 const double limit = sparse || !every_miss ? cfg.max_radius() : miss_limit;
                 for (std::size_t level = 0; level < radii.size() && best < 0; ++level) {
                     const double radius = std::min(radii[level], limit);
-                    gather(level_cubes(level + 1), radius);
+                    gather(level + 1, radius);
                     best = best_within(radius);
                     last_radius = radius;
                     if (radii[level] >= limit) break;
@@ -289,7 +322,7 @@ void attach_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Sur
                 const double layer_reach = kLayerSigmas * ctx.layers.sigma(ray.norm());
                 const auto r2 = static_cast<float>(last_radius * last_radius);
                 s.candidates.clear();
-                for (const std::int32_t sid : s.around) {
+                for (const std::int32_t sid : level_surfaces(at_level)) {
                     const auto k = static_cast<std::size_t>(sid);
                     const double signed_d = surfaces[k].normal.dot(pw - surfaces[k].centroid);
                     if (tolerance[k] >= 0 && std::abs(signed_d) <= tolerance[k] + layer_reach &&
