@@ -294,6 +294,47 @@ TEST(CubeIndex, ClustersAMillionMetresApartMatchBruteForce) {
         }
 }
 
+// Column runs of wide reach on a packed (unranked) index, where most columns around a surface
+// are empty and the search skips them, against brute force: every point within `reach` cubes on
+// each axis, in sorted order, and the same columns as cube numbers.
+TEST(CubeIndex, WideColumnRunsMatchBruteForce) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    std::vector<Vec3f> pts;
+    for (int k = 0; k < 1500; ++k) {  // a wall, a tilted floor and loose points
+        pts.emplace_back(0.3f, u(rng), u(rng));
+        const float x = u(rng), y = u(rng);
+        pts.emplace_back(x, y, 0.2f * x + 0.1f);
+        if (k % 10 == 0) pts.emplace_back(u(rng), u(rng), u(rng));
+    }
+    const double mu = 0.04;
+    const CubeIndex index(pts, mu);
+    ASSERT_FALSE(index.ranked());
+    std::vector<CubeIndex::Range> runs, cube_runs;
+    for (const int reach : {0, 1, 2, 3, 7}) {
+        for (std::size_t c = 0; c < index.cube_count(); c += 3) {
+            const Vec3d g = index.grid_coords(c);
+            std::vector<std::uint32_t> expected, from_runs;
+            for (std::uint32_t i = 0; i < index.size(); ++i)
+                if ((grid_of(index, i) - g).cwiseAbs().maxCoeff() <= reach) expected.push_back(i);
+            runs.clear();
+            cube_runs.clear();
+            index.column_ranges(index.cube_coords(c), reach, runs);
+            index.column_cube_ranges(index.cube_coords(c), reach, cube_runs);
+            for (const auto& r : runs) {
+                ASSERT_LT(r.begin, r.end) << "an empty run";
+                for (std::uint32_t i = r.begin; i < r.end; ++i) from_runs.push_back(i);
+            }
+            ASSERT_EQ(from_runs, expected) << "reach " << reach << ", cube " << c;
+            ASSERT_EQ(cube_runs.size(), runs.size());
+            for (std::size_t k = 0; k < runs.size(); ++k) {
+                ASSERT_EQ(index.cube_begin(cube_runs[k].begin), runs[k].begin);
+                ASSERT_EQ(index.cube_begin(cube_runs[k].end), runs[k].end);
+            }
+        }
+    }
+}
+
 TEST(CubeIndex, RanksKeepNeighboursAndGaps) {
     // Cubes g, g + 1, g + 3 and g + 6 along x (ranks 1, 2, 4, 6), made ranked by a far point:
     // g + 1 and g + 3 must not become neighbours, nor g + 3 and g + 6.
