@@ -295,8 +295,8 @@ TEST(CubeIndex, ClustersAMillionMetresApartMatchBruteForce) {
 }
 
 // Column runs of wide reach on a packed (unranked) index, where most columns around a surface
-// are empty and the search skips them, against brute force: every point within `reach` cubes on
-// each axis, in sorted order, and the same columns as cube numbers.
+// are empty, against brute force: every point within `reach` cubes on each axis, in sorted
+// order, no empty run, and the same columns as cube numbers.
 TEST(CubeIndex, WideColumnRunsMatchBruteForce) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(0.f, 1.f);
