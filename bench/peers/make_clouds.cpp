@@ -1,9 +1,12 @@
 // The benchmark's input clouds, written once as binary PLY so that every tool reads the same file.
 //
-//   make_clouds sim  --poses P [--length L] [--seed S] --out PREFIX [--crops N1,N2,...]
+//   make_clouds sim  --poses P [--scene NAME] [--length L] [--seed S] --out PREFIX
+//                    [--crops N1,N2,...]
 //       P fused URG-04LX scans of the I-beam channel (bench/simulated_scans.hpp), 0.5 m apart.
 //       Without --length: the built-in 4 m channel, exactly as bench_core simulates it. With it:
 //       the same girders L metres long, stiffeners every 0.75 m (for the 10 M-point cloud).
+//       --scene: another built-in scene (room-corner, stairs, ...) from its own scan path, as
+//       `surfgrow scan --scene NAME --poses P` simulates it (the same points).
 //       Writes PREFIX.ply (x y z float, int label = true face id, -1 for none or mixed pixel),
 //       PREFIX.normals.f32 (true unit normal per point, NaN where no face) and PREFIX.meta.json
 //       (faces, point counts, the neighbourhood statistics the peers' parameters come from).
@@ -99,8 +102,11 @@ int cmd_sim(const peers::Args& args) {
     const double mu = args.num("mu", 0.012);
 
     const double t0 = peers::now_s();
+    const std::string scene_name = args.str("scene", "ibeam-channel");
+    if (length > 0 && scene_name != "ibeam-channel")
+        throw std::runtime_error("--length is for the I-beam channel only");
     const sc::SceneDescription desc =
-        length > 0 ? long_channel(length) : sc::builtin_scene("ibeam-channel");
+        length > 0 ? long_channel(length) : sc::builtin_scene(scene_name);
     const sc::Scene scene(desc);
     const sc::ScanSimulator sim(scene);
     std::vector<sc::RawScan> raws;
@@ -135,19 +141,21 @@ int cmd_sim(const peers::Args& args) {
     std::size_t no_face = 0;
     for (std::size_t i = 0; i < n; ++i) no_face += cloud.labels[i] < 0 ? 1 : 0;
     const nlohmann::json nb = neighbourhood_stats(cloud, mu);
-    nlohmann::json meta = {{"kind", "simulated"},
-                           {"scene", length > 0 ? "ibeam-channel, " + std::to_string(length) + " m"
-                                                : std::string("ibeam-channel (built-in, 4 m)")},
-                           {"poses", poses},
-                           {"seed", seed},
-                           {"points", n},
-                           {"points_without_face", no_face},
-                           {"truth", true},
-                           {"mu", mu},
-                           {"min_pts", kMinPts},
-                           {"neighbours_within_mu", nb},
-                           {"simulate_seconds", sim_s},
-                           {"faces", faces}};
+    nlohmann::json meta = {
+        {"kind", "simulated"},
+        {"scene", length > 0 ? "ibeam-channel, " + std::to_string(length) + " m"
+                  : scene_name == "ibeam-channel" ? std::string("ibeam-channel (built-in, 4 m)")
+                                                  : scene_name + " (built-in)"},
+        {"poses", poses},
+        {"seed", seed},
+        {"points", n},
+        {"points_without_face", no_face},
+        {"truth", true},
+        {"mu", mu},
+        {"min_pts", kMinPts},
+        {"neighbours_within_mu", nb},
+        {"simulate_seconds", sim_s},
+        {"faces", faces}};
     write_meta(prefix, meta);
     std::cout << prefix << ".ply: " << n << " points, " << poses << " poses, median "
               << nb["median"] << " neighbours within mu, " << sim_s << " s to simulate\n";

@@ -14,6 +14,7 @@ import os
 import platform
 import shlex
 import signal
+import statistics
 import subprocess
 import sys
 import time
@@ -181,10 +182,12 @@ def make_clouds(a, build, work):
     mk = str(build / "bench/peers/make_clouds")
     clouds = []  # (name, path, meta)
 
-    def sim(name, poses, length=None, crops=None):
+    def sim(name, poses, length=None, crops=None, scene=None):
         prefix = work / "clouds" / name
         if not (prefix.with_suffix(".meta.json").exists() and prefix.with_suffix(".ply").exists()):
             cmd = [mk, "sim", "--poses", str(poses), "--out", str(prefix)]
+            if scene:
+                cmd += ["--scene", scene]
             if length:
                 cmd += ["--length", str(length)]
             if crops:
@@ -203,6 +206,9 @@ def make_clouds(a, build, work):
     add("I-beam channel, single scan", single)
     if not a.quick:
         add("I-beam channel, 4 fused scans", sim("channel-4scans", 4))
+        # Issue 14's other scenes: a room where RANSAC needs only a few planes, and stairs.
+        add("room corner, single scan", sim("room-corner-1scan", 1, scene="room-corner"))
+        add("stairs, 2 fused scans", sim("stairs-2scans", 2, scene="stairs"))
         # 43 poses 0.5 m apart along a 26 m channel: about 10 M points at the 4-scan density.
         big = sim("channel-43scans", 43, length=26.0, crops=[100_000, 300_000, 1_000_000,
                                                              3_000_000])
@@ -449,6 +455,183 @@ def run_scaling(a, build, work, clouds, mem_limit, results):
             results["io"] = rows
 
 
+# Issue 14: the whole `surfgrow grow` command, exec to exit with every default output written,
+# against the fastest peer's algorithm alone on the same scene. The clouds are made by the CLI
+# (`surfgrow scan`), as a user's would be: the same points as make_clouds' for that scene, poses
+# and seed, plus each point's scan and the scan origins that environment.bt carves free space from.
+WHOLE_CLOUDS = [  # key, title, `surfgrow scan` arguments, the peers' cloud of the same scan
+    ("channel-1pose", "I-beam channel, 1 pose", ["--scene", "ibeam-channel", "--poses", "1"],
+     "channel-1scan"),
+    ("channel-4poses", "I-beam channel, 4 poses", ["--scene", "ibeam-channel", "--poses", "4"],
+     "channel-4scans"),
+    ("stairs-2poses", "stairs, 2 poses", ["--scene", "stairs", "--poses", "2"], "stairs-2scans"),
+    ("room-corner", "room corner, 1 pose", ["--scene", "room-corner", "--poses", "1"],
+     "room-corner-1scan"),
+    ("demo-3poses", "the README's demo (channel, 3 poses)",
+     ["--scene", "ibeam-channel", "--poses", "3"], None),
+    ("channel-12poses", "I-beam channel, 12 poses", ["--scene", "ibeam-channel", "--poses", "12"],
+     None),
+]
+WHOLE_RATIO_TARGET = {"channel-1pose": 50, "channel-4poses": 50, "room-corner": 5}
+ROBOT_OUTPUTS = ("planes", "coverage", "occupancy", "environment_bt", "collision")
+
+
+def folder_digest(folder):
+    """Every file but run.json (its seconds differ from run to run), for byte-identity."""
+    return {p.name: p.read_bytes() for p in sorted(folder.iterdir())
+            if p.is_file() and p.name != "run.json" and not p.name.startswith(".")}
+
+
+def run_whole(a, build, work, results):
+    """`surfgrow grow CLOUD -o OUT` from exec to exit, 1 and N threads in alternating rounds after
+    a warm-up of each (the page cache, the first run); bench/whole_process.py does one run."""
+    sys.path.insert(0, str(ROOT / "bench"))
+    import whole_process  # run_once, size_of: one way of timing a run for both scripts
+    cli = str(build / "apps/surfgrow/surfgrow")
+    cores = os.cpu_count()
+    rounds = 2 if a.quick else 5
+    whole = results.setdefault("whole", {})
+    for key, title, scan_args, peer_cloud in (WHOLE_CLOUDS[:1] if a.quick else WHOLE_CLOUDS):
+        if key in whole and not a.rerun:
+            continue
+        scan = work / "whole" / key
+        cloud = scan / "cloud.ply"
+        if not cloud.exists():
+            subprocess.run([cli, "scan", *scan_args, "-o", str(scan), "-q"], check=True)
+        out = work / "whole" / f"{key}-out"
+        row = {"title": title, "peer_cloud": peer_cloud, "input_bytes": cloud.stat().st_size,
+               "rounds": rounds, "load1": os.getloadavg()[0], "identical": True}
+        reference = None
+        for t in (1, cores):
+            whole_process.run_once(cli, cloud, out, t)  # warm-up
+        for _ in range(rounds):
+            for t in (1, cores):
+                wall, peak, seconds = whole_process.run_once(cli, cloud, out, t)
+                cur = row.setdefault(f"t{t}", {"wall": [], "peak_mib": [], "seconds": []})
+                cur["wall"].append(wall)
+                cur["peak_mib"].append(peak)
+                cur["seconds"].append(seconds)
+                digest = folder_digest(out)
+                reference = reference or digest
+                row["identical"] = row["identical"] and digest == reference
+        row["output_bytes"] = whole_process.size_of(out)
+        with open(out / "run.json") as f:
+            row["summary"] = json.load(f).get("summary", "")
+        whole[key] = row
+        log(f"  whole {key}: {statistics.median(row[f't{cores}']['wall']):.3f} s, "
+            f"identical={row['identical']}")
+        save(results, work)
+
+
+def whole_rows(results, cores):
+    """The whole-process table's figures per cloud, medians over the rounds."""
+    rows = []
+    for key, row in results.get("whole", {}).items():
+        tn, t1 = row.get(f"t{cores}"), row.get("t1")
+        if not tn or not t1:
+            continue
+        med = lambda xs: float(np.median(xs))  # noqa: E731
+        st = lambda k: med([s[k] for s in tn["seconds"]])  # noqa: E731
+        robot = {k: med([s["robot_outputs"].get(k, 0.0) for s in tn["seconds"]])
+                 for k in ROBOT_OUTPUTS}
+        r = {"key": key, "title": row["title"], "points": None, "wall": med(tn["wall"]),
+             "wall_1t": med(t1["wall"]), "peak_mib": max(tn["peak_mib"]),
+             "size_ratio": row["output_bytes"] / row["input_bytes"], "read": st("read"),
+             "algorithm": st("algorithm"), "write": st("write"), "robot": robot,
+             "identical": row["identical"], "input_bytes": row["input_bytes"],
+             "summary": row.get("summary", "")}
+        r["speedup"] = r["wall_1t"] / r["wall"]
+        r["slowest"] = max(robot, key=robot.get)
+        r["slowest_ratio"] = robot[r["slowest"]] / r["algorithm"]
+        r["points"] = int(r["summary"].split(" ")[0]) if r["summary"] else None
+        runs = [x for x in results["runs"].values() if x["cloud_file"] == row["peer_cloud"]]
+        peers = [x for x in runs if x["tool"] != "surfgrow" and x["status"] == "ok"]
+        if peers:
+            fastest = min(peers, key=lambda x: x["report"]["algorithm_seconds_median"])
+            r["peer"] = fastest
+            r["peer_s"] = fastest["report"]["algorithm_seconds_median"]
+            r["ratio"] = r["peer_s"] / r["wall"]
+        warm = [x for x in runs if x["tool"] == "surfgrow" and x["method"] == "grow" and
+                x["status"] == "ok"]
+        if warm:
+            r["warm_s"] = warm[0]["report"]["algorithm_seconds_median"]
+        rows.append(r)
+    return rows
+
+
+def whole_targets(rows, cores):
+    """Issue 14's targets on the whole process: (target, measured, met) rows."""
+    out = []
+    for r in rows:
+        goal = WHOLE_RATIO_TARGET.get(r["key"])
+        if goal and "ratio" in r:
+            out.append((f"whole process ≥ {goal}× faster than the fastest peer's algorithm, "
+                        f"{r['title']}", f"{r['ratio']:.1f}×", r["ratio"] >= goal))
+    for r in rows:
+        out.append((f"{cores} threads ≥ 1.7× one on the whole process, byte-identical, "
+                    f"{r['title']}", f"{r['speedup']:.2f}×, "
+                    f"{'identical' if r['identical'] else 'DIFFERENT'}",
+                    r["speedup"] >= 1.7 and r["identical"]))
+    for r in rows:
+        out.append((f"every robot output no slower than the growing, {r['title']}",
+                    f"slowest {r['slowest']} {r['slowest_ratio']:.2f}×",
+                    r["slowest_ratio"] <= 1.0))
+    for r in rows:
+        out.append((f"default outputs no larger than the input, {r['title']}",
+                    f"{r['size_ratio']:.2f}×", r["size_ratio"] <= 1.0))
+    for r in rows:
+        if "warm_s" in r:
+            q = r["algorithm"] / r["warm_s"]
+            out.append((f"index + grow in a fresh process within 1.5× of the warm figure, "
+                        f"{r['title']}", f"{q:.2f}× ({fmt_s(r['algorithm'])} s against "
+                        f"{fmt_s(r['warm_s'])} s)", q <= 1.5))
+    for r in rows:
+        mbs = r["input_bytes"] / 1e6 / max(r["read"], 1e-9)
+        out.append((f"reading the binary PLY in the CLI ≥ 300 MB/s, {r['title']}",
+                    f"{mbs:.0f} MB/s", mbs >= 300))
+    return out
+
+
+def whole_section(results, cores):
+    """The report's whole-process section (issue 14)."""
+    rows = whole_rows(results, cores)
+    if not rows:
+        return []
+    L = ["## The whole process (issue 14)", "",
+         "`surfgrow grow CLOUD -o OUT -q`, from exec to exit, every default output written, on "
+         "clouds made by `surfgrow scan` (the same points as the peers' cloud of that scene, plus "
+         "each point's scan and the scan origins). "
+         f"{results['whole'][rows[0]['key']]['rounds']} rounds of alternating "
+         f"processes (1 thread, {cores}) after a warm-up of each; medians. The fastest peer's "
+         "figure is its algorithm alone (reading excluded) on the same scan, from the tables "
+         "below; the whole-process ratio divides it by surfgrow's whole process. Algorithm: "
+         "`run.json`'s index + grow + attach + finish in that process; warm: the same in "
+         "`peer_surfgrow`'s repeated calls. Outputs: the result folder's bytes against the "
+         "input cloud's.", "",
+         f"| cloud | points | surfgrow algorithm | whole process, {cores} threads | 1 thread | "
+         "speed-up | peak | outputs / input | fastest peer, algorithm alone | whole-process "
+         "ratio |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        peer = (f"{label_of(r['peer']['tool'], r['peer']['method'])} {fmt_s(r['peer_s'])} s"
+                if "peer" in r else "–")
+        ratio = f"**{r['ratio']:.1f}×**" if "ratio" in r else "–"
+        L.append(f"| {r['title']} | {r['points']:,} | {fmt_s(r['algorithm'])} s | "
+                 f"{fmt_s(r['wall'])} s | {fmt_s(r['wall_1t'])} s | {r['speedup']:.2f}× | "
+                 f"{r['peak_mib']:.0f} MiB | {r['size_ratio']:.2f}× | {peer} | {ratio} |")
+    L += ["", f"Stages at {cores} threads (`run.json`, seconds; environment.bt is the wall time "
+          "of its thread, which draws the picture meanwhile):", "",
+          "| cloud | read | algorithm | planes | coverage | occupancy | environment.bt | "
+          "collision | write (all files) | slowest output / algorithm |",
+          "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        rb = r["robot"]
+        L.append(f"| {r['title']} | {fmt_s(r['read'])} | {fmt_s(r['algorithm'])} | "
+                 + " | ".join(fmt_s(rb[k]) for k in ROBOT_OUTPUTS) +
+                 f" | {fmt_s(r['write'])} | {r['slowest']} {r['slowest_ratio']:.2f}× |")
+    L.append("")
+    return L
+
+
 def thread_seconds(row, t):
     """Seconds of surfgrow at t threads in the threads table: the median over every repeat of
     every round (a report from before the rounds: its own median)."""
@@ -631,6 +814,8 @@ def write_report(a, results, path):
             L.append(f"| {mi['cores']} threads ≥ 1.7× one, byte-identical ({name}) | {s:.2f}×, "
                      f"{'identical' if row['identical'] else 'DIFFERENT'} | "
                      f"{'yes' if s >= 1.7 and row['identical'] else 'no'} |")
+    for target, measured, met in whole_targets(whole_rows(results, mi["cores"]), mi["cores"]):
+        L.append(f"| {target} | {measured} | {'yes' if met else 'no'} |")
     io = results.get("io", {})
     if io:
         lo = min(io.get("ply_binary_le_float", 0), io.get("pcd_binary", 0))
@@ -638,6 +823,7 @@ def write_report(a, results, path):
                  f"{io.get('ply_binary_le_float', 0):.0f} MB/s, PCD {io.get('pcd_binary', 0):.0f} "
                  f"MB/s | {'yes' if lo >= 300 else 'no'} |")
     L.append("")
+    L += whole_section(results, mi["cores"])
 
     # Per cloud.
     L.append("## Per cloud")
@@ -806,7 +992,22 @@ def update_readme(results, readme):
             "median normal error (best peer) |", "|---|---|---|---|---|---|---|"] + lines + [""]
     head, rest = text.split(begin, 1)
     tail = rest.split(end, 1)[1]
-    readme.write_text(head + begin + "\n".join(body) + end + tail)
+    text = head + begin + "\n".join(body) + end + tail
+    # The whole process against the peers (issue 14), between its own markers.
+    begin, end = "<!-- whole-process -->", "<!-- /whole-process -->"
+    rows = whole_rows(results, results["machine"]["cores"])
+    if rows and begin in text and end in text:
+        body = ["", f"| cloud | whole process, {results['machine']['cores']} threads | "
+                "fastest peer, algorithm alone | ratio | outputs / input |", "|---|---|---|---|---|"]
+        for r in rows:
+            peer = (f"{label_of(r['peer']['tool'], r['peer']['method'])} {fmt_s(r['peer_s'])} s"
+                    if "peer" in r else "–")
+            body.append(f"| {r['title']} | {fmt_s(r['wall'])} s | {peer} | "
+                        + (f"**{r['ratio']:.1f}×**" if "ratio" in r else "–")
+                        + f" | {r['size_ratio']:.2f}× |")
+        head, rest = text.split(begin, 1)
+        text = head + begin + "\n".join(body + [""]) + end + rest.split(end, 1)[1]
+    readme.write_text(text)
 
 
 def scaling_rows(results):
@@ -882,6 +1083,8 @@ def main():
         run_tools(a, build, work, small, mem_limit, results)
         log("scaling, threads, reading:")
         run_scaling(a, build, work, clouds, mem_limit, results)
+        log("the whole process:")
+        run_whole(a, build, work, results)
         log("tools on the largest clouds:")
         run_tools(a, build, work, large, mem_limit, results)
         results["load"]["end"] = os.getloadavg()[0]

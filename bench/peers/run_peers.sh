@@ -17,6 +17,6 @@ fresh=()  # a new build folder needs no tests; an existing one (e.g. build/) kee
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DSURFGROW_BUILD_PEERS=ON \
       -DSURFGROW_BUILD_BENCHMARKS=ON "${fresh[@]}" >/dev/null
 cmake --build "$build_dir" -j "$(nproc)" \
-      --target make_clouds peer_surfgrow peer_pcl peer_cgal bench_io
+      --target surfgrow make_clouds peer_surfgrow peer_pcl peer_cgal bench_io
 # Debian's Open3D: the system interpreter, not a pyenv/venv python3 that lacks Debian's modules.
 exec /usr/bin/python3 bench/peers/run_peers.py --build "$build_dir" --command "$command_line" "$@"
