@@ -14,7 +14,6 @@ import os
 import platform
 import shlex
 import signal
-import statistics
 import subprocess
 import sys
 import time
@@ -456,95 +455,45 @@ def run_scaling(a, build, work, clouds, mem_limit, results):
 
 
 # Issue 14: the whole `surfgrow grow` command, exec to exit with every default output written,
-# against the fastest peer's algorithm alone on the same scene. The clouds are made by the CLI
-# (`surfgrow scan`), as a user's would be: the same points as make_clouds' for that scene, poses
-# and seed, plus each point's scan and the scan origins that environment.bt carves free space from.
-WHOLE_CLOUDS = [  # key, title, `surfgrow scan` arguments, the peers' cloud of the same scan
-    ("channel-1pose", "I-beam channel, 1 pose", ["--scene", "ibeam-channel", "--poses", "1"],
-     "channel-1scan"),
-    ("channel-4poses", "I-beam channel, 4 poses", ["--scene", "ibeam-channel", "--poses", "4"],
-     "channel-4scans"),
-    ("stairs-2poses", "stairs, 2 poses", ["--scene", "stairs", "--poses", "2"], "stairs-2scans"),
-    ("room-corner", "room corner, 1 pose", ["--scene", "room-corner", "--poses", "1"],
-     "room-corner-1scan"),
-    ("demo-3poses", "the README's demo (channel, 3 poses)",
-     ["--scene", "ibeam-channel", "--poses", "3"], None),
-    ("channel-12poses", "I-beam channel, 12 poses", ["--scene", "ibeam-channel", "--poses", "12"],
-     None),
-]
+# against the fastest peer's algorithm alone on the same scan. bench/whole_process.py times it
+# (in its own small process: a child's peak memory starts from its parent's size) on clouds made
+# by `surfgrow scan`, as a user's would be: the same points as make_clouds' cloud of that scene,
+# poses and seed, plus each point's scan and the scan origins environment.bt carves from.
+PEER_CLOUD_OF = {"channel-1pose": "channel-1scan", "channel-4poses": "channel-4scans",
+                 "stairs-2poses": "stairs-2scans", "room-corner": "room-corner-1scan"}
 WHOLE_RATIO_TARGET = {"channel-1pose": 50, "channel-4poses": 50, "room-corner": 5}
-ROBOT_OUTPUTS = ("planes", "coverage", "occupancy", "environment_bt", "collision")
-
-
-def folder_digest(folder):
-    """Every file but run.json (its seconds differ from run to run), for byte-identity."""
-    return {p.name: p.read_bytes() for p in sorted(folder.iterdir())
-            if p.is_file() and p.name != "run.json" and not p.name.startswith(".")}
+sys.path.insert(0, str(ROOT / "bench"))
+import whole_process  # noqa: E402  (the clouds, the timing and the medians: one place)
 
 
 def run_whole(a, build, work, results):
-    """`surfgrow grow CLOUD -o OUT` from exec to exit, 1 and N threads in alternating rounds after
-    a warm-up of each (the page cache, the first run); bench/whole_process.py does one run."""
-    sys.path.insert(0, str(ROOT / "bench"))
-    import whole_process  # run_once, size_of: one way of timing a run for both scripts
-    cli = str(build / "apps/surfgrow/surfgrow")
-    cores = os.cpu_count()
-    rounds = 2 if a.quick else 5
     whole = results.setdefault("whole", {})
-    for key, title, scan_args, peer_cloud in (WHOLE_CLOUDS[:1] if a.quick else WHOLE_CLOUDS):
-        if key in whole and not a.rerun:
-            continue
-        scan = work / "whole" / key
-        cloud = scan / "cloud.ply"
-        if not cloud.exists():
-            subprocess.run([cli, "scan", *scan_args, "-o", str(scan), "-q"], check=True)
-        out = work / "whole" / f"{key}-out"
-        row = {"title": title, "peer_cloud": peer_cloud, "input_bytes": cloud.stat().st_size,
-               "rounds": rounds, "load1": os.getloadavg()[0], "identical": True}
-        reference = None
-        for t in (1, cores):
-            whole_process.run_once(cli, cloud, out, t)  # warm-up
-        for _ in range(rounds):
-            for t in (1, cores):
-                wall, peak, seconds = whole_process.run_once(cli, cloud, out, t)
-                cur = row.setdefault(f"t{t}", {"wall": [], "peak_mib": [], "seconds": []})
-                cur["wall"].append(wall)
-                cur["peak_mib"].append(peak)
-                cur["seconds"].append(seconds)
-                digest = folder_digest(out)
-                reference = reference or digest
-                row["identical"] = row["identical"] and digest == reference
-        row["output_bytes"] = whole_process.size_of(out)
-        with open(out / "run.json") as f:
-            row["summary"] = json.load(f).get("summary", "")
-        whole[key] = row
-        log(f"  whole {key}: {statistics.median(row[f't{cores}']['wall']):.3f} s, "
-            f"identical={row['identical']}")
-        save(results, work)
+    keys = [c[0] for c in whole_process.CLOUDS[:1 if a.quick else None]
+            if a.rerun or c[0] not in whole]
+    if not keys:
+        return
+    js = work / "whole.json"
+    subprocess.run(["/usr/bin/python3", str(ROOT / "bench/whole_process.py"), "--cli",
+                    str(build / "apps/surfgrow/surfgrow"), "--runs", "2" if a.quick else "5",
+                    "--clouds", ",".join(keys), "--work", str(work / "whole"), "--json",
+                    str(js)], check=True)
+    for row in json.loads(js.read_text()):
+        whole[row["key"]] = row
+    save(results, work)
 
 
-def whole_rows(results, cores):
-    """The whole-process table's figures per cloud, medians over the rounds."""
+def whole_rows(results):
+    """The whole-process table's figures per cloud, with the fastest peer on the same scan."""
     rows = []
     for key, row in results.get("whole", {}).items():
-        tn, t1 = row.get(f"t{cores}"), row.get("t1")
-        if not tn or not t1:
+        if "t1" not in row or "t2" not in row:
             continue
-        med = lambda xs: float(np.median(xs))  # noqa: E731
-        st = lambda k: med([s[k] for s in tn["seconds"]])  # noqa: E731
-        robot = {k: med([s["robot_outputs"].get(k, 0.0) for s in tn["seconds"]])
-                 for k in ROBOT_OUTPUTS}
-        r = {"key": key, "title": row["title"], "points": None, "wall": med(tn["wall"]),
-             "wall_1t": med(t1["wall"]), "peak_mib": max(tn["peak_mib"]),
-             "size_ratio": row["output_bytes"] / row["input_bytes"], "read": st("read"),
-             "algorithm": st("algorithm"), "write": st("write"), "robot": robot,
-             "identical": row["identical"], "input_bytes": row["input_bytes"],
-             "summary": row.get("summary", "")}
-        r["speedup"] = r["wall_1t"] / r["wall"]
-        r["slowest"] = max(robot, key=robot.get)
-        r["slowest_ratio"] = robot[r["slowest"]] / r["algorithm"]
+        r = whole_process.figures(row) | {"key": key, "title": row["title"],
+                                          "identical": row["identical"],
+                                          "input_bytes": row["input_bytes"],
+                                          "summary": row.get("summary", "")}
         r["points"] = int(r["summary"].split(" ")[0]) if r["summary"] else None
-        runs = [x for x in results["runs"].values() if x["cloud_file"] == row["peer_cloud"]]
+        runs = [x for x in results["runs"].values() if x["cloud_file"] == PEER_CLOUD_OF.get(key)]
         peers = [x for x in runs if x["tool"] != "surfgrow" and x["status"] == "ok"]
         if peers:
             fastest = min(peers, key=lambda x: x["report"]["algorithm_seconds_median"])
@@ -594,7 +543,7 @@ def whole_targets(rows, cores):
 
 def whole_section(results, cores):
     """The report's whole-process section (issue 14)."""
-    rows = whole_rows(results, cores)
+    rows = whole_rows(results)
     if not rows:
         return []
     L = ["## The whole process (issue 14)", "",
@@ -626,7 +575,7 @@ def whole_section(results, cores):
     for r in rows:
         rb = r["robot"]
         L.append(f"| {r['title']} | {fmt_s(r['read'])} | {fmt_s(r['algorithm'])} | "
-                 + " | ".join(fmt_s(rb[k]) for k in ROBOT_OUTPUTS) +
+                 + " | ".join(fmt_s(rb[k]) for k in whole_process.ROBOT_OUTPUTS) +
                  f" | {fmt_s(r['write'])} | {r['slowest']} {r['slowest_ratio']:.2f}× |")
     L.append("")
     return L
@@ -814,7 +763,7 @@ def write_report(a, results, path):
             L.append(f"| {mi['cores']} threads ≥ 1.7× one, byte-identical ({name}) | {s:.2f}×, "
                      f"{'identical' if row['identical'] else 'DIFFERENT'} | "
                      f"{'yes' if s >= 1.7 and row['identical'] else 'no'} |")
-    for target, measured, met in whole_targets(whole_rows(results, mi["cores"]), mi["cores"]):
+    for target, measured, met in whole_targets(whole_rows(results), whole_process.THREADS[-1]):
         L.append(f"| {target} | {measured} | {'yes' if met else 'no'} |")
     io = results.get("io", {})
     if io:
@@ -823,7 +772,7 @@ def write_report(a, results, path):
                  f"{io.get('ply_binary_le_float', 0):.0f} MB/s, PCD {io.get('pcd_binary', 0):.0f} "
                  f"MB/s | {'yes' if lo >= 300 else 'no'} |")
     L.append("")
-    L += whole_section(results, mi["cores"])
+    L += whole_section(results, whole_process.THREADS[-1])
 
     # Per cloud.
     L.append("## Per cloud")
@@ -995,9 +944,9 @@ def update_readme(results, readme):
     text = head + begin + "\n".join(body) + end + tail
     # The whole process against the peers (issue 14), between its own markers.
     begin, end = "<!-- whole-process -->", "<!-- /whole-process -->"
-    rows = whole_rows(results, results["machine"]["cores"])
+    rows = whole_rows(results)
     if rows and begin in text and end in text:
-        body = ["", f"| cloud | whole process, {results['machine']['cores']} threads | "
+        body = ["", f"| cloud | whole process, {whole_process.THREADS[-1]} threads | "
                 "fastest peer, algorithm alone | ratio | outputs / input |", "|---|---|---|---|---|"]
         for r in rows:
             peer = (f"{label_of(r['peer']['tool'], r['peer']['method'])} {fmt_s(r['peer_s'])} s"
