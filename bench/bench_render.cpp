@@ -112,10 +112,11 @@ BENCHMARK(BM_RenderEmpty)->UseRealTime()->Unit(benchmark::kMillisecond);
 void BM_EncodePng(benchmark::State& state) {
     const Image image = render_scene(channel_disks(10000, 0), RenderOptions{});
     std::size_t bytes = 0;
-    for (auto _ : state) bytes = encode_png(image).size();
+    const auto threads = static_cast<int>(state.range(0));
+    for (auto _ : state) bytes = encode_png(image, threads).size();
     state.counters["bytes"] = double(bytes);
 }
-BENCHMARK(BM_EncodePng)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EncodePng)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 BENCHMARK_MAIN();

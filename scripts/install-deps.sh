@@ -10,13 +10,13 @@
 set -euo pipefail
 
 declare -A group=(
-    [build]="cmake make g++ pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev liblzf-dev libpng-dev libfreetype-dev libfontconfig-dev fonts-dejavu-core liboctomap-dev python3 python3-matplotlib python3-numpy"
+    [build]="cmake make g++ pkg-config libeigen3-dev libcli11-dev nlohmann-json3-dev liblzf-dev libpng-dev zlib1g-dev libfreetype-dev libfontconfig-dev fonts-dejavu-core liboctomap-dev python3 python3-matplotlib python3-numpy"
     [test]="libgtest-dev libgmock-dev libbenchmark-dev clang-format strace"
     [package]="qemu-user clang libomp-dev"
     [fuzz]="clang libclang-rt-14-dev libomp-dev"
     [python]="pybind11-dev python3-dev python3-numpy python3-setuptools python3-wheel python3-pip python3-venv python3-pytest python3-tqdm python3-open3d"
     [peers]="libpcl-dev libcgal-dev libtbb-dev python3-open3d libgmp-dev libmpfr-dev"
-    [cross]="g++-aarch64-linux-gnu qemu-user libc6-dev:arm64 libgomp1:arm64 liblzf-dev:arm64 libpng-dev:arm64 libfreetype-dev:arm64 libfontconfig-dev:arm64 liboctomap1.9:arm64 libgtest-dev:arm64 libgmock-dev:arm64"
+    [cross]="g++-aarch64-linux-gnu qemu-user libc6-dev:arm64 libgomp1:arm64 liblzf-dev:arm64 libpng-dev:arm64 zlib1g-dev:arm64 libfreetype-dev:arm64 libfontconfig-dev:arm64 liboctomap1.9:arm64 libgtest-dev:arm64 libgmock-dev:arm64"
 )
 # liboctomap-dev cannot be installed for two architectures at once (its CMake files differ), so the
 # cross build takes the arm64 one's files from its package, unpacked here (octomap_DIR).

@@ -89,7 +89,7 @@ void run_render(const RenderArgs& a) {
         render::add_points(picture.scene, g.cloud, g.labels, r.surfaces.size());
     }
     const render::Image image = render::render_scene(picture.scene, picture.options);
-    io::write_atomically(a.out, [&](std::ostream& o) { render::write_png(image, o); });
+    io::write_atomically(a.out, [&](std::ostream& o) { render::write_png(image, o, a.threads); });
     if (!a.quiet)
         std::cout << a.out << ": " << image.width() << "x" << image.height() << ", "
                   << (a.close_up ? "corner close-up"

@@ -52,12 +52,12 @@ void stage_surfaces_pictures(io::OutputTransaction& tx, const std::vector<Surfac
     SurfacesPicture picture = surfaces_picture(surfaces, stats, plane_of_surface, units, threads);
     if (overview) {
         const render::Image image = render::render_scene(picture.scene, picture.options);
-        tx.add("surfaces.png", [&](std::ostream& o) { render::write_png(image, o); });
+        tx.add("surfaces.png", [&](std::ostream& o) { render::write_png(image, o, threads); });
     }
     if (close_up) {
         if (make_corner_close_up(picture, plane_of_surface)) {
             const render::Image image = render::render_scene(picture.scene, picture.options);
-            tx.add("corner.png", [&](std::ostream& o) { render::write_png(image, o); });
+            tx.add("corner.png", [&](std::ostream& o) { render::write_png(image, o, threads); });
         } else {
             tx.drop("corner.png");
         }
