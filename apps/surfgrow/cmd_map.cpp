@@ -132,6 +132,8 @@ void add_map_command(CLI::App& app) {
         if (!args->calibration.empty() && args->calibration != "none")
             calibration = io::read_calibration_file(args->calibration);
         Map map(config);
+        // environment.bt after each scan: only the new scan's rays are cast.
+        io::OctomapCarver carver;
 
         std::set<std::string> seen;
         const auto add = [&](const std::string& file) {
@@ -150,7 +152,7 @@ void add_map_command(CLI::App& app) {
             GrowRun run;
             run.result = map.result();
             write_outputs(map.cloud(), map.pipeline_config(), run, args->out, args->outputs, units,
-                          fs::path(file).filename().string());
+                          fs::path(file).filename().string(), &carver);
             if (args->quiet) return;
             const MapUpdate& u = map.last_update();
             char buf[400];

@@ -139,7 +139,8 @@ GrowRun grow_and_write(const PointCloud& cloud, const PipelineConfig& config,
 
 void write_outputs(const PointCloud& cloud, const PipelineConfig& config, GrowRun& run,
                    const std::filesystem::path& out_dir, const OutputChoice& outputs,
-                   const CloudUnits& units, const std::string& input_name) {
+                   const CloudUnits& units, const std::string& input_name,
+                   io::OctomapCarver* carver) {
     const PipelineResult& r = run.result;
     const GrowerConfig& grow = config.grow;
     const double read_seconds = run.read_seconds;
@@ -154,11 +155,13 @@ void write_outputs(const PointCloud& cloud, const PipelineConfig& config, GrowRu
     std::span<const std::int32_t> planes;
     if (r.planes) planes = r.planes->plane_of_patch;
     // The pictures are drawn while environment.bt's rays are cast.
-    const io::OccupancySummary occupancy =
-        io::stage_result(tx, cloud, config, r, meta, outputs.files, [&] {
+    const io::OccupancySummary occupancy = io::stage_result(
+        tx, cloud, config, r, meta, outputs.files,
+        [&] {
             stage_surfaces_pictures(tx, r.grow.surfaces, r.grow.stats, planes, units.name,
                                     grow.threads, outputs.picture, outputs.close_up);
-        });
+        },
+        carver);
     run.write_seconds = watch.seconds();
 
     if (r.planes) run.robot.planes = planes_summary(*r.planes, units.name);

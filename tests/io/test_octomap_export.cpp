@@ -314,3 +314,89 @@ TEST(OctomapExport, ARayEndBeyondTheRangeNamesTheFirstSuchPoint) {
 
 }  // namespace
 }  // namespace surfgrow
+
+namespace surfgrow {
+namespace {
+
+// The room corner's points as scans appended one by one, each from its own origin: the second
+// from 2 m away (its rays reach past the first box: the bits move to a larger one), the third
+// back inside, the fourth with a stray 40 m off (a box too large for a bitmap: sorted keys).
+struct GrowingScans {
+    std::vector<PointCloud> clouds;  // scans 0..k
+    std::vector<SensorOrigins> origins;
+};
+
+GrowingScans growing_scans() {
+    const RoomCorner& rc = room_corner();
+    const std::vector<Vec3d> from = {rc.origin, rc.origin + Vec3d(2.0, 0.5, 0.0),
+                                     rc.origin + Vec3d(-0.3, 0.2, 0.1), rc.origin};
+    GrowingScans g;
+    PointCloud cloud;
+    const std::size_t n = rc.cloud.size();
+    for (std::size_t k = 0; k < from.size(); ++k) {
+        for (std::size_t i = k * n / 4; i < (k + 1) * n / 4; ++i) {
+            cloud.points.push_back(rc.cloud.points[i]);
+            cloud.scan_index.push_back(static_cast<std::uint32_t>(k));
+        }
+        if (k == 3) {
+            cloud.points.push_back(rc.origin.cast<float>() + Vec3f(40, 0, 0));
+            cloud.scan_index.push_back(3u);
+        }
+        cloud.scan_origins.push_back(from[k]);
+        g.clouds.push_back(cloud);
+        SensorOrigins o;
+        o.source = SensorOrigins::Source::kScanOrigins;
+        o.origins = cloud.scan_origins;
+        g.origins.push_back(o);
+    }
+    return g;
+}
+
+}  // namespace
+
+TEST(OctomapCarver, ScanByScanWritesWhatTheWholeCloudWouldGive) {
+    const RoomCorner& rc = room_corner();
+    const GrowingScans g = growing_scans();
+    for (const int threads : {1, 2}) {
+        io::OctomapCarver carver;
+        for (std::size_t k = 0; k < g.clouds.size(); ++k) {
+            std::ostringstream step, whole;
+            const io::OctomapSummary s =
+                carver.write(step, rc.grid, g.clouds[k], {}, g.origins[k], threads);
+            const io::OctomapSummary w =
+                io::write_octomap_bt(whole, rc.grid, g.clouds[k], {}, g.origins[k], threads);
+            ASSERT_GT(w.free, 1000u);
+            EXPECT_EQ(s.free, w.free) << "scan " << k;
+            EXPECT_EQ(s.rays, w.rays) << "scan " << k;
+            EXPECT_TRUE(step.str() == whole.str()) << "scan " << k << ", " << threads << " threads";
+        }
+    }
+}
+
+TEST(OctomapCarver, ACloudThatDidNotOnlyGrowStartsAfresh) {
+    const RoomCorner& rc = room_corner();
+    const GrowingScans g = growing_scans();
+    io::OctomapCarver carver;
+    std::ostringstream ignored;
+    (void)carver.write(ignored, rc.grid, g.clouds[2], {}, g.origins[2], 2);
+    // Fewer points (an earlier map), then other origins (another job): each as from scratch.
+    for (const auto& [cloud, origins] :
+         {std::pair{g.clouds[1], g.origins[1]}, std::pair{g.clouds[2], SensorOrigins{}}}) {
+        std::ostringstream step, whole;
+        (void)carver.write(step, rc.grid, cloud, {}, origins, 2);
+        (void)io::write_octomap_bt(whole, rc.grid, cloud, {}, origins, 2);
+        EXPECT_TRUE(step.str() == whole.str());
+    }
+    // Another resolution: its own rays.
+    const OccupancyGrid coarse = occupancy_grid(rc.cloud, rc.result, [&] {
+        GrowerConfig c = rc.config;
+        c.mu = 0.05;
+        return c;
+    }());
+    std::ostringstream step, whole;
+    (void)carver.write(step, coarse, g.clouds[2], {}, g.origins[2], 2);
+    (void)io::write_octomap_bt(whole, coarse, g.clouds[2], {}, g.origins[2], 2);
+    EXPECT_TRUE(step.str() == whole.str());
+}
+
+}  // namespace surfgrow

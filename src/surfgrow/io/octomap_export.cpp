@@ -7,6 +7,9 @@
 #include <array>
 #include <atomic>
 #include <bit>
+#include <cmath>
+#include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -87,6 +90,28 @@ class LeafSet {
         if (!(word.load(std::memory_order_relaxed) & bit))
             word.fetch_or(bit, std::memory_order_relaxed);
     }
+    // Whether the box of keys [lo, hi] lies within this set's box.
+    [[nodiscard]] bool holds(const std::array<std::uint64_t, 3>& lo,
+                             const std::array<std::uint64_t, 3>& hi) const {
+        for (std::size_t a = 0; a < 3; ++a)
+            if (lo[a] < lo_[a] || hi[a] >= lo_[a] + dims_[a]) return false;
+        return true;
+    }
+    // Every key of this dense set into `to`, a dense set whose box holds this one's: whole rows
+    // of words, since both boxes start on a multiple of 64 along x.
+    void copy_into(LeafSet& to) const {
+        const std::uint64_t words = dims_[0] / 64, shift = (lo_[0] - to.lo_[0]) / 64;
+        for (std::uint64_t z = 0; z < dims_[2]; ++z)
+            for (std::uint64_t y = 0; y < dims_[1]; ++y) {
+                const std::uint64_t from = (y + dims_[1] * z) * words;
+                const std::uint64_t at =
+                    ((y + lo_[1] - to.lo_[1]) + to.dims_[1] * (z + lo_[2] - to.lo_[2])) *
+                        (to.dims_[0] / 64) +
+                    shift;
+                std::copy_n(bits_.begin() + static_cast<std::ptrdiff_t>(from), words,
+                            to.bits_.begin() + static_cast<std::ptrdiff_t>(at));
+            }
+    }
     // Removes every key of `other` (a dense set over the same box) from this dense set.
     void subtract(const LeafSet& other) {
         for (std::size_t w = 0; w < bits_.size(); ++w) bits_[w] &= ~other.bits_[w];
@@ -136,15 +161,140 @@ class LeafSet {
 
 }  // namespace
 
-OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
-                                const CloudView& cloud, std::span<const std::uint8_t> ray_mask,
-                                const SensorOrigins& origins, int threads) {
-    if (!(grid.mu() > 0))
+// What an OctomapCarver keeps between calls: every distinct ray so far and, when the box of
+// its leaves is small enough for a bitmap, the leaves they carved.
+struct OctomapCarver::State {
+    explicit State(double resolution) : tree(resolution) {}
+    octomap::OcTree tree;
+    std::size_t consumed = 0;  // points whose rays are in `rays`
+    SensorOrigins origins;     // those rays' origins
+    // (origin, end leaf) of every distinct ray, sorted.
+    std::vector<std::pair<std::uint32_t, std::uint64_t>> rays;
+    std::array<std::uint64_t, 3> lo{0xffff, 0xffff, 0xffff}, hi{0, 0, 0};  // of rays' leaves
+    std::unique_ptr<LeafSet> carved;  // dense, or null: cast every ray again at each write
+    std::uint64_t cast = 0;           // rays whose leaves are in `carved`
+};
+
+OctomapCarver::OctomapCarver() = default;
+OctomapCarver::~OctomapCarver() = default;
+OctomapCarver::OctomapCarver(OctomapCarver&&) noexcept = default;
+OctomapCarver& OctomapCarver::operator=(OctomapCarver&&) noexcept = default;
+
+namespace {
+
+// The rays of points [from, cloud.size()): (origin, end leaf), sorted and distinct.
+std::vector<std::pair<std::uint32_t, std::uint64_t>> rays_of(const octomap::OcTree& tree,
+                                                             const CloudView& cloud,
+                                                             std::span<const std::uint8_t> ray_mask,
+                                                             const SensorOrigins& origins,
+                                                             std::size_t from, int threads) {
+    std::vector<std::pair<std::uint32_t, std::uint64_t>> rays;
+    // The ray of point i, or false for a point without one (not finite, masked, no origin).
+    auto ray_of = [&](std::size_t i, std::uint32_t& origin, std::uint64_t& end) {
+        if (!is_finite(cloud.points[i]) || (!ray_mask.empty() && !ray_mask[i])) return false;
+        const Vec3d* o = origins.origin_of(cloud, i);
+        if (!o) return false;
+        origin = static_cast<std::uint32_t>(o - origins.origins.data());
+        end = pack(key_of(tree, cloud.points[i].cast<double>(), "a point"));
+        return true;
+    };
+    if (origins.origins.size() <= 0xffff) {
+        // One key per ray, origin above the leaf key, collected in parallel chunks (an error
+        // names the first bad point, as a serial loop would) and radix-sorted (a tenth of
+        // std::sort's time on a million rays).
+        const std::size_t n = cloud.size() - from;
+        const int team = resolve_threads(threads);
+        const std::size_t chunks = team > 1 && n > 65536 ? 8 * static_cast<std::size_t>(team) : 1;
+        std::vector<std::vector<std::uint64_t>> part(chunks);
+        detail::ParallelErrors errors;
+#pragma omp parallel for num_threads(team) schedule(dynamic, 1) if (chunks > 1)
+        for (std::size_t k = 0; k < chunks; ++k)
+            errors.run(k, [&] {
+                std::uint32_t origin = 0;
+                std::uint64_t end = 0;
+                for (std::size_t i = from + k * n / chunks; i < from + (k + 1) * n / chunks; ++i)
+                    if (ray_of(i, origin, end))
+                        part[k].push_back((std::uint64_t{origin} << 48) | end);
+            });
+        errors.rethrow();
+        std::vector<std::uint64_t> packed;
+        std::size_t total = 0;
+        for (const auto& p : part) total += p.size();
+        packed.reserve(total);
+        for (auto& p : part) {
+            packed.insert(packed.end(), p.begin(), p.end());
+            std::vector<std::uint64_t>().swap(p);
+        }
+        radix_sort(packed, origins.origins.size() > 1 ? 64 : 48);
+        packed.erase(std::unique(packed.begin(), packed.end()), packed.end());
+        rays.resize(packed.size());
+        for (std::size_t r = 0; r < packed.size(); ++r)
+            rays[r] = {static_cast<std::uint32_t>(packed[r] >> 48), packed[r] & 0xffffffffffffull};
+    } else {
+        std::uint32_t origin = 0;
+        std::uint64_t end = 0;
+        for (std::size_t i = from; i < cloud.size(); ++i)
+            if (ray_of(i, origin, end)) rays.emplace_back(origin, end);
+        std::sort(rays.begin(), rays.end());
+        rays.erase(std::unique(rays.begin(), rays.end()), rays.end());
+    }
+    return rays;
+}
+
+void grow_box(std::array<std::uint64_t, 3>& lo, std::array<std::uint64_t, 3>& hi,
+              std::uint64_t key) {
+    for (std::size_t a = 0; a < 3; ++a) {
+        const std::uint64_t v = (key >> (16 * a)) & 0xffff;
+        lo[a] = std::min(lo[a], v);
+        hi[a] = std::max(hi[a], v);
+    }
+}
+
+// Casts `rays` into `carved` (in parallel into a dense set): how many were cast.
+std::uint64_t cast_rays(const octomap::OcTree& tree, const SensorOrigins& origins,
+                        std::span<const std::pair<std::uint32_t, std::uint64_t>> rays,
+                        LeafSet& carved, int threads) {
+    std::vector<octomap::point3d> from(origins.origins.size());
+    for (std::size_t k = 0; k < origins.origins.size(); ++k) from[k] = to_point(origins.origins[k]);
+    const int team = carved.dense() ? resolve_threads(threads) : 1;
+    const auto n = static_cast<std::ptrdiff_t>(rays.size());
+    std::uint64_t cast = 0;
+#pragma omp parallel num_threads(team) if (team > 1 && n > 4096) reduction(+ : cast)
+    {
+        octomap::KeyRay ray;
+        const bool shared = omp_get_num_threads() > 1;
+#pragma omp for schedule(dynamic, 1024)
+        for (std::ptrdiff_t r = 0; r < n; ++r) {
+            const auto& [o, end] = rays[static_cast<std::size_t>(r)];
+            if (!tree.computeRayKeys(from[o], tree.keyToCoord(unpack(end)), ray)) continue;
+            ++cast;
+            for (const octomap::OcTreeKey& key : ray) {
+                if (shared) {
+                    carved.insert_shared(pack(key));
+                } else {
+                    carved.insert(pack(key));
+                }
+            }
+        }
+    }
+    return cast;
+}
+
+}  // namespace
+
+OctomapSummary OctomapCarver::write(std::ostream& out, const OccupancyGrid& grid,
+                                    const CloudView& cloud, std::span<const std::uint8_t> ray_mask,
+                                    const SensorOrigins& origins, int threads) {
+    if (!(grid.mu() > 0) || !std::isfinite(grid.mu()))
         throw Error(ErrorCode::kInvalidParameter,
                     cat({"environment.bt: the resolution must be positive, got ", num(grid.mu())}));
+    // Rays are kept for one resolution: another grid starts afresh.
+    if (!state_ || state_->tree.getResolution() != grid.mu())
+        state_ = std::make_unique<State>(grid.mu());
+    State& st = *state_;
+    octomap::OcTree& tree = st.tree;
     if (!ray_mask.empty() && ray_mask.size() != cloud.size())
         throw Error(ErrorCode::kInternal, "environment.bt: ray mask size differs from the cloud");
-    octomap::OcTree tree(grid.mu());
     OctomapSummary summary;
     summary.resolution = grid.mu();
     summary.carving = origins.source;
@@ -157,121 +307,79 @@ OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
     if (std::adjacent_find(occupied.begin(), occupied.end()) != occupied.end())
         throw Error(ErrorCode::kInternal, "environment.bt: two cubes share an OctoMap leaf");
 
+    // What was cast before still holds when the cloud only grew and its first origins stayed.
+    const bool first = st.consumed == 0 && st.rays.empty();
+    const bool grown =
+        first ||
+        (cloud.size() >= st.consumed && origins.source == st.origins.source &&
+         origins.origins.size() >= st.origins.origins.size() &&
+         std::equal(st.origins.origins.begin(), st.origins.origins.end(), origins.origins.begin()));
+    if (!grown) {
+        state_.reset();
+        return write(out, grid, cloud, ray_mask, origins, threads);
+    }
+    std::vector<std::pair<std::uint32_t, std::uint64_t>> fresh;
+    if (origins.known()) fresh = rays_of(tree, cloud, ray_mask, origins, st.consumed, threads);
+    st.consumed = cloud.size();
+    st.origins = origins;
+    // Rays already cast (an origin seen before, an end leaf reached before) are not cast again.
+    fresh.erase(std::remove_if(fresh.begin(), fresh.end(),
+                               [&](const auto& r) {
+                                   return std::binary_search(st.rays.begin(), st.rays.end(), r);
+                               }),
+                fresh.end());
+    for (const auto& [o, end] : fresh) {
+        grow_box(st.lo, st.hi, end);
+        grow_box(st.lo, st.hi, pack(key_of(tree, origins.origins[o], "a sensor origin")));
+    }
+    const std::size_t before = st.rays.size();
+    st.rays.insert(st.rays.end(), fresh.begin(), fresh.end());
+    std::inplace_merge(st.rays.begin(), st.rays.begin() + static_cast<std::ptrdiff_t>(before),
+                       st.rays.end());
+
     std::vector<std::uint64_t> free;  // the sorted form's free leaves
     bool written = false;             // the dense form writes as it goes
-    if (origins.known()) {
-        // (origin, end leaf) of every ray: one per distinct end leaf, cast to the leaf's centre.
-        std::vector<std::pair<std::uint32_t, std::uint64_t>> rays;
-        // The ray of point i, or false for a point without one (not finite, masked, no origin).
-        auto ray_of = [&](std::size_t i, std::uint32_t& origin, std::uint64_t& end) {
-            if (!is_finite(cloud.points[i]) || (!ray_mask.empty() && !ray_mask[i])) return false;
-            const Vec3d* o = origins.origin_of(cloud, i);
-            if (!o) return false;
-            origin = static_cast<std::uint32_t>(o - origins.origins.data());
-            end = pack(key_of(tree, cloud.points[i].cast<double>(), "a point"));
-            return true;
-        };
-        if (origins.origins.size() <= 0xffff) {
-            // One key per ray, origin above the leaf key, collected in parallel chunks (an error
-            // names the first bad point, as a serial loop would) and radix-sorted (a tenth of
-            // std::sort's time on a million rays).
-            const std::size_t n = cloud.size();
-            const int team = resolve_threads(threads);
-            const std::size_t chunks =
-                team > 1 && n > 65536 ? 8 * static_cast<std::size_t>(team) : 1;
-            std::vector<std::vector<std::uint64_t>> part(chunks);
-            detail::ParallelErrors errors;
-#pragma omp parallel for num_threads(team) schedule(dynamic, 1) if (chunks > 1)
-            for (std::size_t k = 0; k < chunks; ++k)
-                errors.run(k, [&] {
-                    std::uint32_t origin = 0;
-                    std::uint64_t end = 0;
-                    for (std::size_t i = k * n / chunks; i < (k + 1) * n / chunks; ++i)
-                        if (ray_of(i, origin, end))
-                            part[k].push_back((std::uint64_t{origin} << 48) | end);
-                });
-            errors.rethrow();
-            std::vector<std::uint64_t> packed;
-            std::size_t total = 0;
-            for (const auto& p : part) total += p.size();
-            packed.reserve(total);
-            for (auto& p : part) {
-                packed.insert(packed.end(), p.begin(), p.end());
-                std::vector<std::uint64_t>().swap(p);
-            }
-            radix_sort(packed, origins.origins.size() > 1 ? 64 : 48);
-            packed.erase(std::unique(packed.begin(), packed.end()), packed.end());
-            rays.resize(packed.size());
-            for (std::size_t r = 0; r < packed.size(); ++r)
-                rays[r] = {static_cast<std::uint32_t>(packed[r] >> 48),
-                           packed[r] & 0xffffffffffffull};
-        } else {
-            std::uint32_t origin = 0;
-            std::uint64_t end = 0;
-            for (std::size_t i = 0; i < cloud.size(); ++i)
-                if (ray_of(i, origin, end)) rays.emplace_back(origin, end);
-            std::sort(rays.begin(), rays.end());
-            rays.erase(std::unique(rays.begin(), rays.end()), rays.end());
-        }
+    if (!st.rays.empty()) {
         // Every leaf a ray crosses lies in the box of its two end leaves.
-        std::array<std::uint64_t, 3> lo{0xffff, 0xffff, 0xffff}, hi{0, 0, 0};
-        auto grow_box = [&](std::uint64_t key) {
-            for (int a = 0; a < 3; ++a) {
-                const std::uint64_t v = (key >> (16 * a)) & 0xffff;
-                lo[a] = std::min(lo[a], v);
-                hi[a] = std::max(hi[a], v);
-            }
-        };
-        std::vector<octomap::point3d> from(origins.origins.size());
-        for (std::size_t k = 0; k < origins.origins.size(); ++k)
-            from[k] = to_point(origins.origins[k]);
-        for (const auto& [o, end] : rays) {
-            grow_box(end);
-            grow_box(pack(key_of(tree, origins.origins[o], "a sensor origin")));
-        }
-        for (const std::uint64_t key : occupied) grow_box(key);
-        if (!rays.empty()) {
-            LeafSet blocked(lo, hi), carved(lo, hi);
-            for (const std::uint64_t key : occupied) blocked.insert(key);
-            for (const auto& r : rays) blocked.insert(r.second);
-            // Rays in parallel into one bitmap (the sparse form takes one thread).
-            const int team = carved.dense() ? resolve_threads(threads) : 1;
-            const auto n = static_cast<std::ptrdiff_t>(rays.size());
-            std::uint64_t cast = 0;
-#pragma omp parallel num_threads(team) if (team > 1 && n > 4096) reduction(+ : cast)
-            {
-                octomap::KeyRay ray;
-                const bool shared = omp_get_num_threads() > 1;
-#pragma omp for schedule(dynamic, 1024)
-                for (std::ptrdiff_t r = 0; r < n; ++r) {
-                    const auto& [o, end] = rays[static_cast<std::size_t>(r)];
-                    if (!tree.computeRayKeys(from[o], tree.keyToCoord(unpack(end)), ray)) continue;
-                    ++cast;
-                    for (const octomap::OcTreeKey& key : ray) {
-                        if (shared) {
-                            carved.insert_shared(pack(key));
-                        } else {
-                            carved.insert(pack(key));
-                        }
-                    }
-                }
-            }
-            summary.rays = cast;
-            if (carved.dense()) {
-                // Written from the bits: listing and sorting millions of free leaves cost 4x
-                // the rays themselves (0.6 s on four fused scans).
-                carved.subtract(blocked);
-                LeafSet occupied_set(lo, hi);
-                for (const std::uint64_t key : occupied) occupied_set.insert(key);
-                summary.free = carved.count();
-                write_octree_bitmaps(out, grid.mu(), carved.bitmaps(occupied_set),
-                                     resolve_threads(threads));
-                written = true;
+        std::array<std::uint64_t, 3> lo = st.lo, hi = st.hi;
+        for (const std::uint64_t key : occupied) grow_box(lo, hi, key);
+        if (st.carved && st.carved->holds(lo, hi)) {
+            st.cast += cast_rays(tree, origins, fresh, *st.carved, threads);
+        } else {
+            // A new box (or the first): the leaves carved so far move over, whole rows of bits.
+            auto carved = std::make_unique<LeafSet>(lo, hi);
+            if (carved->dense() && st.carved) {
+                st.carved->copy_into(*carved);
+                st.cast += cast_rays(tree, origins, fresh, *carved, threads);
             } else {
-                blocked.finish();
-                carved.finish();
-                carved.for_each_not_in(blocked, [&](std::uint64_t key) { free.push_back(key); });
+                st.cast = cast_rays(tree, origins, st.rays, *carved, threads);
             }
+            st.carved = std::move(carved);
+        }
+        summary.rays = st.cast;
+        LeafSet blocked(lo, hi);
+        for (const std::uint64_t key : occupied) blocked.insert(key);
+        for (const auto& r : st.rays) blocked.insert(r.second);
+        if (st.carved->dense()) {
+            // Written from the bits: listing and sorting millions of free leaves cost 4x
+            // the rays themselves (0.6 s on four fused scans). A carver used once may spend
+            // its bits; one that is kept subtracts from a copy.
+            std::unique_ptr<LeafSet> spent;
+            if (!keep_) spent = std::move(st.carved);
+            LeafSet& carved = spent ? *spent : *(spent = std::make_unique<LeafSet>(*st.carved));
+            carved.subtract(blocked);
+            LeafSet occupied_set(lo, hi);
+            for (const std::uint64_t key : occupied) occupied_set.insert(key);
+            summary.free = carved.count();
+            write_octree_bitmaps(out, grid.mu(), carved.bitmaps(occupied_set),
+                                 resolve_threads(threads));
+            written = true;
+        } else {
+            // Too wide a box for a bitmap: the sparse set is rebuilt at every write.
+            blocked.finish();
+            st.carved->finish();
+            st.carved->for_each_not_in(blocked, [&](std::uint64_t key) { free.push_back(key); });
+            st.carved.reset();
         }
     }
 
@@ -283,6 +391,14 @@ OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
         throw Error(ErrorCode::kCannotWrite, "environment.bt: the OctoMap could not be written");
     summary.occupied = occupied.size();
     return summary;
+}
+
+OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
+                                const CloudView& cloud, std::span<const std::uint8_t> ray_mask,
+                                const SensorOrigins& origins, int threads) {
+    OctomapCarver carver;
+    carver.keep_ = false;
+    return carver.write(out, grid, cloud, ray_mask, origins, threads);
 }
 
 }  // namespace surfgrow::io

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <ostream>
 #include <span>
 
@@ -47,5 +48,35 @@ struct OctomapSummary {
 OctomapSummary write_octomap_bt(std::ostream& out, const OccupancyGrid& grid,
                                 const CloudView& cloud, std::span<const std::uint8_t> ray_mask,
                                 const SensorOrigins& origins, int threads = 1);
+
+/// write_octomap_bt for a cloud that only grows, as `surfgrow map`'s after each scan: each
+/// write() casts only the rays of the points added since the previous one (the free leaves
+/// are a union of rays, whatever the order they are cast in), keeps what they carved, and
+/// writes the same bytes as write_octomap_bt on the whole cloud. The carved leaves stay in a
+/// bitmap over the box of the rays so far (moved to a larger one when a scan reaches past it).
+///
+/// Contract: each call's cloud is the previous one's with points appended, the same mask for
+/// those points, and the same first origins. A cloud that shrank or origins that changed start
+/// it afresh (correct, not incremental); changed points in place are not detected.
+class OctomapCarver {
+  public:
+    OctomapCarver();
+    ~OctomapCarver();
+    OctomapCarver(OctomapCarver&&) noexcept;
+    OctomapCarver& operator=(OctomapCarver&&) noexcept;
+
+    /// As write_octomap_bt. The rays are kept for the grid's resolution (another starts afresh).
+    OctomapSummary write(std::ostream& out, const OccupancyGrid& grid, const CloudView& cloud,
+                         std::span<const std::uint8_t> ray_mask, const SensorOrigins& origins,
+                         int threads = 1);
+
+  private:
+    struct State;
+    std::unique_ptr<State> state_;
+    bool keep_ = true;  // false: one write only, which may spend the carved bits
+    friend OctomapSummary write_octomap_bt(std::ostream&, const OccupancyGrid&, const CloudView&,
+                                           std::span<const std::uint8_t>, const SensorOrigins&,
+                                           int);
+};
 
 }  // namespace surfgrow::io

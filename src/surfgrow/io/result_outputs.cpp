@@ -55,13 +55,14 @@ struct OctomapBytes {
 };
 
 OctomapBytes octomap_bytes(const OccupancyGrid& grid, const CloudView& cloud,
-                           const GrowerConfig& config) {
+                           const GrowerConfig& config, OctomapCarver* carver) {
     const Stopwatch watch;
     const std::vector<std::uint8_t> rays = grown_point_mask(cloud, config);
     const SensorOrigins origins = sensor_origins(cloud, config);
     std::ostringstream out;
     OctomapBytes b;
-    b.summary = write_octomap_bt(out, grid, cloud, rays, origins, config.threads);
+    b.summary = carver ? carver->write(out, grid, cloud, rays, origins, config.threads)
+                       : write_octomap_bt(out, grid, cloud, rays, origins, config.threads);
     b.bytes = std::move(out).str();
     b.seconds = watch.seconds();
     return b;
@@ -71,7 +72,7 @@ OctomapBytes octomap_bytes(const OccupancyGrid& grid, const CloudView& cloud,
 OccupancySummary stage_occupancy_files(OutputTransaction& tx, const OccupancyGrid& grid,
                                        const CloudView& cloud, const GrowerConfig& config,
                                        const ResultMeta& meta, const OccupancyOutputs& which,
-                                       std::future<OctomapBytes>* ready) {
+                                       std::future<OctomapBytes>* ready, OctomapCarver* carver) {
     OccupancySummary summary;
     summary.occupied_cubes = grid.size();
     summary.registered_points = grid.registered_points();
@@ -83,7 +84,7 @@ OccupancySummary stage_occupancy_files(OutputTransaction& tx, const OccupancyGri
     if (which.ply)
         tx.add("occupancy.ply", [&](std::ostream& o) { write_occupancy_ply(o, grid, meta); });
     if (which.octomap) {
-        const OctomapBytes b = ready ? ready->get() : octomap_bytes(grid, cloud, config);
+        const OctomapBytes b = ready ? ready->get() : octomap_bytes(grid, cloud, config, carver);
         tx.add("environment.bt", [&](std::ostream& o) {
             o.write(b.bytes.data(), static_cast<std::streamsize>(b.bytes.size()));
         });
@@ -104,15 +105,16 @@ OccupancySummary stage_occupancy_files(OutputTransaction& tx, const OccupancyGri
 OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,
                               const PipelineConfig& config, const PipelineResult& result,
                               const ResultMeta& meta, const ResultFiles& files,
-                              const std::function<void()>& meanwhile) {
+                              const std::function<void()>& meanwhile, OctomapCarver* carver) {
     const GrowResult& r = result.grow;
     // environment.bt's rays take longest of the outputs and need none of the others: with more
     // than one thread they are cast while the caller's files (the pictures) and the others are
     // written.
     std::future<OctomapBytes> octomap;
     if (result.occupancy && files.octomap && resolve_threads(config.grow.threads) > 1)
-        octomap = std::async(std::launch::async,
-                             [&] { return octomap_bytes(*result.occupancy, cloud, config.grow); });
+        octomap = std::async(std::launch::async, [&] {
+            return octomap_bytes(*result.occupancy, cloud, config.grow, carver);
+        });
     if (meanwhile) meanwhile();
     tx.add("surfaces.ply", [&](std::ostream& o) { write_surfaces_ply(o, r.surfaces, meta); });
     tx.add("surfaces.json", [&](std::ostream& o) { write_result_json(o, r, config.grow, meta); });
@@ -129,7 +131,7 @@ OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,
         which.ply = which.json = files.occupancy;
         which.octomap = files.octomap;
         occupancy = stage_occupancy_files(tx, *result.occupancy, cloud, config.grow, meta, which,
-                                          octomap.valid() ? &octomap : nullptr);
+                                          octomap.valid() ? &octomap : nullptr, carver);
     }
     if (result.collision) stage_collision(tx, *result.collision, meta);
     return occupancy;
@@ -162,7 +164,7 @@ void stage_coverage(OutputTransaction& tx, const CoveragePlan& plan, const Resul
 OccupancySummary stage_occupancy(OutputTransaction& tx, const OccupancyGrid& grid,
                                  const CloudView& cloud, const GrowerConfig& config,
                                  const ResultMeta& meta, const OccupancyOutputs& which) {
-    return stage_occupancy_files(tx, grid, cloud, config, meta, which, nullptr);
+    return stage_occupancy_files(tx, grid, cloud, config, meta, which, nullptr, nullptr);
 }
 
 void stage_collision(OutputTransaction& tx, const CollisionSpheres& spheres,

@@ -57,11 +57,13 @@ struct OccupancySummary {
 /// coverage.*, occupancy.*, environment.bt, collision_spheres.*. Returns what the occupancy
 /// outputs found (zero when there is no grid).
 /// `meanwhile` (the caller's own files, e.g. the pictures) runs while environment.bt's rays are
-/// cast on another thread, before the other files are staged.
+/// cast on another thread, before the other files are staged. With a `carver` (a map refreshed
+/// after each scan), environment.bt casts only the rays of the points added since its last use.
 OccupancySummary stage_result(OutputTransaction& tx, const CloudView& cloud,
                               const PipelineConfig& config, const PipelineResult& result,
                               const ResultMeta& meta, const ResultFiles& files = {},
-                              const std::function<void()>& meanwhile = {});
+                              const std::function<void()>& meanwhile = {},
+                              OctomapCarver* carver = nullptr);
 
 /// Stages planes.json, planes.ply and, with `obj`, planes.obj; drops what the new planes make
 /// stale (planes.obj without `obj`, coverage.*, eval.json) unless staged again.
