@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/planes/boundary_polygon.hpp"
@@ -202,6 +203,76 @@ TEST(PolygonRaster, ScanlineFillMatchesPointInPolygon) {
         }
     EXPECT_NEAR(double(inside) * 0.007 * 0.007, polygon_area(p), 0.05 * polygon_area(p));
     EXPECT_EQ(rasterise_polygons({}, 0.01).width, 0);
+}
+
+// The scanline fill visits only the edges active on a row. Its cells must be those of the plain
+// fill that tests every edge on every row (the oracle below), on outlines of many edges whose
+// vertices fall on the rows' centres, between them, and on horizontal runs, with holes, several
+// polygons at once; and within a cell of the even-odd point-in-polygon test.
+TEST(PolygonRaster, ActiveEdgesGiveTheCellsOfEveryEdgeOnEveryRow) {
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int trial = 0; trial < 40; ++trial) {
+        const double cell = 0.004 + 0.006 * u(rng);
+        const bool on_rows = trial % 2 == 0;  // vertices on the rows' centres: the half-open rule
+        auto star = [&](Vec2d centre, double radius, int n) {
+            Ring ring;
+            for (int k = 0; k < n; ++k) {
+                const double t = 2 * 3.14159265358979 * k / n;
+                const double rr = radius * (0.5 + 0.5 * u(rng));
+                Vec2d q = centre + rr * Vec2d(std::cos(t), std::sin(t));
+                if (on_rows) q.y() = std::round(q.y() / cell) * cell;
+                if (k % 7 == 3 && !ring.empty()) q.y() = ring.back().y();  // a horizontal edge
+                ring.push_back(q);
+            }
+            return ring;
+        };
+        std::vector<PolygonWithHoles> polys(3);
+        for (int k = 0; k < 3; ++k) {
+            const Vec2d c(0.7 * k, 0.2 * k);
+            polys[static_cast<std::size_t>(k)].outer = star(c, 0.3, 50 + 200 * k);
+            polys[static_cast<std::size_t>(k)].holes = {star(c, 0.06, 9)};
+        }
+        const Vec2d phase(on_rows ? 0.0 : 0.3 * cell, on_rows ? 0.0 : 0.7 * cell);
+        const PlaneRaster r = rasterise_polygons(polys, cell, phase);
+        ASSERT_GT(r.width, 0);
+        // The oracle: every edge of every ring on every row.
+        std::size_t differ = 0, off_contains = 0;
+        for (int y = 0; y < r.height; ++y) {
+            const double cy = r.origin.y() + y * r.cell;
+            std::vector<double> xs;
+            auto crossings = [&](const Ring& ring) {
+                for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+                    const Vec2d &a = ring[i], &b = ring[j];
+                    if ((a.y() > cy) != (b.y() > cy))
+                        xs.push_back(a.x() + (cy - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
+                }
+            };
+            for (const PolygonWithHoles& p : polys) {
+                crossings(p.outer);
+                for (const Ring& h : p.holes) crossings(h);
+            }
+            std::sort(xs.begin(), xs.end());
+            std::vector<std::uint8_t> row(static_cast<std::size_t>(r.width), 0);
+            for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
+                const double from = std::ceil((xs[k] - r.origin.x()) / r.cell);
+                const double to = std::ceil((xs[k + 1] - r.origin.x()) / r.cell);
+                for (int x = static_cast<int>(std::max(0.0, from));
+                     x < static_cast<int>(std::min<double>(r.width, to)); ++x)
+                    row[static_cast<std::size_t>(x)] = 1;
+            }
+            for (int x = 0; x < r.width; ++x) {
+                differ += r.at(x, y) != row[static_cast<std::size_t>(x)];
+                bool in = false;
+                for (const PolygonWithHoles& p : polys)
+                    in = in || polygon_contains(p, r.centre(x, y));
+                off_contains += r.at(x, y) != in;
+            }
+        }
+        EXPECT_EQ(differ, 0u) << "trial " << trial;
+        // Cells whose centre lies on an edge may go either way in the two tests: a few.
+        EXPECT_LE(off_contains, 0.002 * r.width * r.height) << "trial " << trial;
+    }
 }
 
 }  // namespace

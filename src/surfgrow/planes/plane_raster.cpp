@@ -144,24 +144,56 @@ PlaneRaster rasterise_polygons(std::span<const PolygonWithHoles> polygons, doubl
     r.height = static_cast<int>(std::floor((hi.y() - base.y()) / r.cell)) + 1;
     const std::size_t w = static_cast<std::size_t>(r.width);
     r.cells.assign(w * static_cast<std::size_t>(r.height), 0);
-    std::vector<double> xs;
-    xs.reserve(64);
-    auto crossings = [&](const Ring& ring, double y) {
+    // Scanline fill over an active edge list: each edge is visited on the rows it spans, not on
+    // every row (a wall's outline has thousands of edges and its raster thousands of rows).
+    // Edge (a, b) crosses row y where (a.y > y) != (b.y > y), at the x below, as before.
+    struct Edge {
+        Vec2d a, b;
+        int first = 0;  // first row it may cross
+    };
+    auto row_y = [&](int y) { return base.y() + y * r.cell; };
+    std::vector<Edge> edges_by_row;
+    edges_by_row.reserve(edges);
+    auto add_ring = [&](const Ring& ring) {
         const std::size_t n = ring.size();
         for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
             const Vec2d& a = ring[i];
             const Vec2d& b = ring[j];
-            if ((a.y() > y) != (b.y() > y))
-                xs.push_back(a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
+            if (a.y() == b.y()) continue;  // horizontal: crosses no row
+            const double lo_y = std::min(a.y(), b.y());
+            // The first row at or above the edge's lower end (rounding checked on the rows).
+            int y = static_cast<int>(std::clamp(std::floor((lo_y - base.y()) / r.cell), -1.0,
+                                                static_cast<double>(r.height)));
+            while (y > 0 && row_y(y - 1) >= lo_y) --y;
+            while (y < r.height && row_y(y) < lo_y) ++y;
+            edges_by_row.push_back({a, b, std::max(y, 0)});
         }
     };
+    for (const PolygonWithHoles& p : polygons) {
+        add_ring(p.outer);
+        for (const Ring& h : p.holes) add_ring(h);
+    }
+    std::stable_sort(edges_by_row.begin(), edges_by_row.end(),
+                     [](const Edge& u, const Edge& v) { return u.first < v.first; });
+    std::vector<const Edge*> active;
+    std::vector<double> xs;
+    xs.reserve(64);
+    std::size_t next = 0;
     for (int y = 0; y < r.height; ++y) {
-        const double cy = base.y() + y * r.cell;
+        const double cy = row_y(y);
+        while (next < edges_by_row.size() && edges_by_row[next].first <= y)
+            active.push_back(&edges_by_row[next++]);
         xs.clear();
-        for (const PolygonWithHoles& p : polygons) {
-            crossings(p.outer, cy);
-            for (const Ring& h : p.holes) crossings(h, cy);
+        std::size_t kept = 0;
+        for (const Edge* e : active) {
+            const Vec2d& a = e->a;
+            const Vec2d& b = e->b;
+            if (std::max(a.y(), b.y()) <= cy) continue;  // passed: never crosses a row again
+            active[kept++] = e;
+            if ((a.y() > cy) != (b.y() > cy))
+                xs.push_back(a.x() + (cy - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
         }
+        active.resize(kept);
         std::sort(xs.begin(), xs.end());
         for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
             const double from = std::ceil((xs[k] - base.x()) / r.cell);

@@ -45,9 +45,10 @@ void squared_distance_transform(std::span<const std::uint8_t> feature, int width
                                 std::vector<double>& out);
 
 /// The cells, of side `cell` and centred on a lattice through `phase`, whose centres lie inside
-/// the polygons (even-odd over all rings, so holes stay empty), by scanline fill: cost linear in
-/// the cells plus rows times edges. The raster spans the polygons' bounding box; `cell` grows
-/// if that would need more than kMaxRasterCells cells. Empty (0 x 0) when there are no polygons.
+/// the polygons (even-odd over all rings, so holes stay empty), by scanline fill over an active
+/// edge list: cost linear in the cells, the edges and the crossings. The raster spans the polygons'
+/// bounding box; `cell` grows if that would need more than kMaxRasterCells cells. Empty (0 x 0)
+/// when there are no polygons.
 [[nodiscard]] PlaneRaster rasterise_polygons(std::span<const PolygonWithHoles> polygons,
                                              double cell, const Vec2d& phase = Vec2d::Zero());
 
