@@ -176,6 +176,47 @@ TEST(Triangulation, TracedPolygonsWithHolesTriangulateToTheirArea) {
     EXPECT_NEAR(triangles_area(t), polygon_area(polys[0]), 1e-9);
 }
 
+// Ears are tested against the loop's positions in a grid: on an outline of about 1,000 vertices
+// with holes, every triangle is counter-clockwise, none lies in a hole, and they add up to the
+// polygon's area, n + 2 h - 2 of them.
+TEST(Triangulation, LongOutlinesWithHolesTriangulateToTheirArea) {
+    // A comb of 60 teeth along the top of a 3 m x 1 m wall, its bottom edge cut into 600 steps,
+    // two round holes of 300 vertices and a square one.
+    PolygonWithHoles p;
+    for (int k = 0; k <= 600; ++k) p.outer.push_back({0.005 * k, 0.001 * (k % 2)});
+    for (int k = 59; k >= 0; --k) {
+        const double x = 0.05 * k;
+        p.outer.push_back({x + 0.05, 1.0});
+        p.outer.push_back({x + 0.03, 1.0});
+        p.outer.push_back({x + 0.03, 1.1});
+        p.outer.push_back({x + 0.01, 1.1});
+        p.outer.push_back({x + 0.01, 1.0});
+    }
+    p.outer.push_back({0.0, 1.0});
+    auto circle = [](Vec2d c, double r, int n) {
+        Ring ring;
+        for (int k = 0; k < n; ++k) {
+            const double t = -2 * 3.14159265358979 * k / n;  // clockwise, as holes are
+            ring.push_back(c + r * Vec2d(std::cos(t), std::sin(t)));
+        }
+        return ring;
+    };
+    p.holes = {circle({0.7, 0.5}, 0.2, 300),
+               circle({1.5, 0.4}, 0.15, 300),
+               {{2.0, 0.3}, {2.0, 0.7}, {2.4, 0.7}, {2.4, 0.3}}};
+    std::size_t n = p.outer.size();
+    for (const Ring& h : p.holes) n += h.size();
+    ASSERT_GT(n, 1000u);
+    const Triangulation t = triangulate(p);
+    EXPECT_EQ(t.triangles.size(), n + 2 * p.holes.size() - 2);
+    EXPECT_NEAR(triangles_area(t), polygon_area(p), 1e-9);
+    for (const auto& tri : t.triangles) {
+        const Vec2d &a = t.vertices[tri[0]], &b = t.vertices[tri[1]], &c = t.vertices[tri[2]];
+        EXPECT_GT(orient2d(a, b, c), 0);
+        EXPECT_TRUE(polygon_contains(p, (a + b + c) / 3));
+    }
+}
+
 TEST(Triangulation, DegenerateInputNeverFails) {
     PolygonWithHoles p;
     EXPECT_TRUE(triangulate(p).triangles.empty());

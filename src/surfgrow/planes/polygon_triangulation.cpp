@@ -129,17 +129,53 @@ Triangulation triangulate(const PolygonWithHoles& polygon) {
         if (orient2d(v[loop[a]], v[loop[b]], v[loop[c]]) > 0)
             t.triangles.push_back({loop[a], loop[b], loop[c]});
     };
+    // The loop's positions in a grid of about one per cell, so that an ear is tested against
+    // the positions near it rather than the whole loop (a wall's outline has thousands). A
+    // clipped position is dead: the same positions are tested as a walk round the loop would.
+    Vec2d glo = Vec2d::Constant(std::numeric_limits<double>::infinity()), ghi = -glo;
+    for (const Index i : loop) {
+        glo = glo.cwiseMin(v[i]);
+        ghi = ghi.cwiseMax(v[i]);
+    }
+    const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(n))));
+    const Vec2d extent = (ghi - glo).cwiseMax(Vec2d::Constant(1e-300));
+    auto cell_of = [&](const Vec2d& q, int axis) {
+        const double f = (q[axis] - glo[axis]) / extent[axis] * side;
+        return std::clamp(static_cast<int>(std::isfinite(f) ? f : 0.0), 0, side - 1);
+    };
+    std::vector<std::size_t> start(static_cast<std::size_t>(side) * side + 1, 0), members(n);
+    for (std::size_t i = 0; i < n; ++i)
+        ++start[static_cast<std::size_t>(cell_of(v[loop[i]], 1)) * side +
+                static_cast<std::size_t>(cell_of(v[loop[i]], 0)) + 1];
+    for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+    {
+        std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+        for (std::size_t i = 0; i < n; ++i)
+            members[fill[static_cast<std::size_t>(cell_of(v[loop[i]], 1)) * side +
+                         static_cast<std::size_t>(cell_of(v[loop[i]], 0))]++] = i;
+    }
+    std::vector<std::uint8_t> alive(n, 1);
     auto is_ear = [&](std::size_t b) {
         const std::size_t a = prev[b], c = next[b];
         const Vec2d &A = v[loop[a]], &B = v[loop[b]], &C = v[loop[c]];
         if (orient2d(A, B, C) <= 0) return false;
         const Vec2d lo = A.cwiseMin(B).cwiseMin(C), hi = A.cwiseMax(B).cwiseMax(C);
-        for (std::size_t k = next[c]; k != a; k = next[k]) {
-            const Vec2d& q = v[loop[k]];
-            if (q.x() < lo.x() || q.y() < lo.y() || q.x() > hi.x() || q.y() > hi.y()) continue;
-            if (q == A || q == B || q == C) continue;  // a bridge's duplicate
-            if (in_triangle(A, B, C, q)) return false;
-        }
+        const int x0 = cell_of(lo, 0), x1 = cell_of(hi, 0), y0 = cell_of(lo, 1),
+                  y1 = cell_of(hi, 1);
+        for (int gy = y0; gy <= y1; ++gy)
+            for (int gx = x0; gx <= x1; ++gx) {
+                const std::size_t g =
+                    static_cast<std::size_t>(gy) * side + static_cast<std::size_t>(gx);
+                for (std::size_t m = start[g]; m < start[g + 1]; ++m) {
+                    const std::size_t k = members[m];
+                    if (!alive[k] || k == a || k == b || k == c) continue;
+                    const Vec2d& q = v[loop[k]];
+                    if (q.x() < lo.x() || q.y() < lo.y() || q.x() > hi.x() || q.y() > hi.y())
+                        continue;
+                    if (q == A || q == B || q == C) continue;  // a bridge's duplicate
+                    if (in_triangle(A, B, C, q)) return false;
+                }
+            }
         return true;
     };
     std::size_t remaining = n, cur = 0, stalled = 0;
@@ -150,6 +186,7 @@ Triangulation triangulate(const PolygonWithHoles& polygon) {
             emit(prev[cur], cur, next[cur]);
             next[prev[cur]] = next[cur];
             prev[next[cur]] = prev[cur];
+            alive[cur] = 0;
             --remaining;
             cur = prev[cur];
             stalled = 0;
