@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "surfgrow/core/detail/parallel_errors.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/core/threads.hpp"
@@ -103,10 +104,15 @@ std::string encode_png(const Image& image, int threads) {
     const int blocks = (image.height() + kBlockRows - 1) / kBlockRows;
     std::vector<Block> deflated(static_cast<std::size_t>(blocks));
     const int team = std::min(resolve_threads(threads), blocks);
+    detail::ParallelErrors errors;  // out of memory in a block: thrown after the loop
 #pragma omp parallel for num_threads(team) schedule(dynamic, 1) if (team > 1)
     for (int b = 0; b < blocks; ++b)
-        deflated[static_cast<std::size_t>(b)] = deflate_rows(
-            image, b * kBlockRows, std::min(image.height(), (b + 1) * kBlockRows), b == blocks - 1);
+        errors.run(static_cast<std::size_t>(b), [&] {
+            deflated[static_cast<std::size_t>(b)] =
+                deflate_rows(image, b * kBlockRows, std::min(image.height(), (b + 1) * kBlockRows),
+                             b == blocks - 1);
+        });
+    errors.rethrow();
     std::string stream = {'\x78', '\x5e'};  // zlib header: deflate, 32 KB window, check bits
     uLong adler = 1;
     for (const Block& block : deflated) {
