@@ -399,4 +399,22 @@ TEST(OctomapCarver, ACloudThatDidNotOnlyGrowStartsAfresh) {
     EXPECT_TRUE(step.str() == whole.str());
 }
 
+// A scan with a point beyond OctoMap's range is refused whole: the carver still holds the scans
+// before it, and the next good scan gives the whole cloud's bytes.
+TEST(OctomapCarver, AScanThatFailsLeavesWhatWasCarvedBefore) {
+    const RoomCorner& rc = room_corner();
+    const GrowingScans g = growing_scans();
+    io::OctomapCarver carver;
+    std::ostringstream ignored;
+    (void)carver.write(ignored, rc.grid, g.clouds[1], {}, g.origins[1], 2);
+    PointCloud bad = g.clouds[2];
+    bad.points.push_back({0.5f, 0.25f, 900.0f});
+    bad.scan_index.push_back(2u);
+    EXPECT_THROW((void)carver.write(ignored, rc.grid, bad, {}, g.origins[2], 2), Error);
+    std::ostringstream step, whole;
+    (void)carver.write(step, rc.grid, g.clouds[2], {}, g.origins[2], 2);
+    (void)io::write_octomap_bt(whole, rc.grid, g.clouds[2], {}, g.origins[2], 2);
+    EXPECT_TRUE(step.str() == whole.str());
+}
+
 }  // namespace surfgrow

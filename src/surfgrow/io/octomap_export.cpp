@@ -318,75 +318,87 @@ OctomapSummary OctomapCarver::write(std::ostream& out, const OccupancyGrid& grid
         state_.reset();
         return write(out, grid, cloud, ray_mask, origins, threads);
     }
+    // Everything that can fail on the input (a point or origin beyond OctoMap's range) is
+    // found before the state changes; a failure after (out of memory) starts it afresh.
     std::vector<std::pair<std::uint32_t, std::uint64_t>> fresh;
     if (origins.known()) fresh = rays_of(tree, cloud, ray_mask, origins, st.consumed, threads);
-    st.consumed = cloud.size();
-    st.origins = origins;
     // Rays already cast (an origin seen before, an end leaf reached before) are not cast again.
     fresh.erase(std::remove_if(fresh.begin(), fresh.end(),
                                [&](const auto& r) {
                                    return std::binary_search(st.rays.begin(), st.rays.end(), r);
                                }),
                 fresh.end());
+    std::array<std::uint64_t, 3> rays_lo = st.lo, rays_hi = st.hi;
     for (const auto& [o, end] : fresh) {
-        grow_box(st.lo, st.hi, end);
-        grow_box(st.lo, st.hi, pack(key_of(tree, origins.origins[o], "a sensor origin")));
+        grow_box(rays_lo, rays_hi, end);
+        grow_box(rays_lo, rays_hi, pack(key_of(tree, origins.origins[o], "a sensor origin")));
     }
-    const std::size_t before = st.rays.size();
-    st.rays.insert(st.rays.end(), fresh.begin(), fresh.end());
-    std::inplace_merge(st.rays.begin(), st.rays.begin() + static_cast<std::ptrdiff_t>(before),
-                       st.rays.end());
-
     std::vector<std::uint64_t> free;  // the sorted form's free leaves
     bool written = false;             // the dense form writes as it goes
-    if (!st.rays.empty()) {
-        // Every leaf a ray crosses lies in the box of its two end leaves.
-        std::array<std::uint64_t, 3> lo = st.lo, hi = st.hi;
-        for (const std::uint64_t key : occupied) grow_box(lo, hi, key);
-        if (st.carved && st.carved->holds(lo, hi)) {
-            st.cast += cast_rays(tree, origins, fresh, *st.carved, threads);
-        } else {
-            // A new box (or the first): the leaves carved so far move over, whole rows of bits.
-            auto carved = std::make_unique<LeafSet>(lo, hi);
-            if (carved->dense() && st.carved) {
-                st.carved->copy_into(*carved);
-                st.cast += cast_rays(tree, origins, fresh, *carved, threads);
+    try {
+        st.consumed = cloud.size();
+        st.origins = origins;
+        st.lo = rays_lo;
+        st.hi = rays_hi;
+        const std::size_t before = st.rays.size();
+        st.rays.insert(st.rays.end(), fresh.begin(), fresh.end());
+        std::inplace_merge(st.rays.begin(), st.rays.begin() + static_cast<std::ptrdiff_t>(before),
+                           st.rays.end());
+
+        if (!st.rays.empty()) {
+            // Every leaf a ray crosses lies in the box of its two end leaves.
+            std::array<std::uint64_t, 3> lo = st.lo, hi = st.hi;
+            for (const std::uint64_t key : occupied) grow_box(lo, hi, key);
+            if (st.carved && st.carved->holds(lo, hi)) {
+                st.cast += cast_rays(tree, origins, fresh, *st.carved, threads);
             } else {
-                st.cast = cast_rays(tree, origins, st.rays, *carved, threads);
+                // A new box (or the first): the leaves carved so far move over, whole rows of bits.
+                auto carved = std::make_unique<LeafSet>(lo, hi);
+                if (carved->dense() && st.carved) {
+                    st.carved->copy_into(*carved);
+                    st.cast += cast_rays(tree, origins, fresh, *carved, threads);
+                } else {
+                    st.cast = cast_rays(tree, origins, st.rays, *carved, threads);
+                }
+                st.carved = std::move(carved);
             }
-            st.carved = std::move(carved);
+            summary.rays = st.cast;
+            LeafSet blocked(lo, hi);
+            for (const std::uint64_t key : occupied) blocked.insert(key);
+            for (const auto& r : st.rays) blocked.insert(r.second);
+            if (st.carved->dense()) {
+                // Written from the bits: listing and sorting millions of free leaves cost 4x
+                // the rays themselves (0.6 s on four fused scans). A carver used once may spend
+                // its bits; one that is kept subtracts from a copy.
+                std::unique_ptr<LeafSet> spent;
+                if (!keep_) spent = std::move(st.carved);
+                LeafSet& carved = spent ? *spent : *(spent = std::make_unique<LeafSet>(*st.carved));
+                carved.subtract(blocked);
+                LeafSet occupied_set(lo, hi);
+                for (const std::uint64_t key : occupied) occupied_set.insert(key);
+                summary.free = carved.count();
+                write_octree_bitmaps(out, grid.mu(), carved.bitmaps(occupied_set),
+                                     resolve_threads(threads));
+                written = true;
+            } else {
+                // Too wide a box for a bitmap: the sparse set is rebuilt at every write.
+                blocked.finish();
+                st.carved->finish();
+                st.carved->for_each_not_in(blocked,
+                                           [&](std::uint64_t key) { free.push_back(key); });
+                st.carved.reset();
+            }
         }
-        summary.rays = st.cast;
-        LeafSet blocked(lo, hi);
-        for (const std::uint64_t key : occupied) blocked.insert(key);
-        for (const auto& r : st.rays) blocked.insert(r.second);
-        if (st.carved->dense()) {
-            // Written from the bits: listing and sorting millions of free leaves cost 4x
-            // the rays themselves (0.6 s on four fused scans). A carver used once may spend
-            // its bits; one that is kept subtracts from a copy.
-            std::unique_ptr<LeafSet> spent;
-            if (!keep_) spent = std::move(st.carved);
-            LeafSet& carved = spent ? *spent : *(spent = std::make_unique<LeafSet>(*st.carved));
-            carved.subtract(blocked);
-            LeafSet occupied_set(lo, hi);
-            for (const std::uint64_t key : occupied) occupied_set.insert(key);
-            summary.free = carved.count();
-            write_octree_bitmaps(out, grid.mu(), carved.bitmaps(occupied_set),
-                                 resolve_threads(threads));
-            written = true;
-        } else {
-            // Too wide a box for a bitmap: the sparse set is rebuilt at every write.
-            blocked.finish();
-            st.carved->finish();
-            st.carved->for_each_not_in(blocked, [&](std::uint64_t key) { free.push_back(key); });
-            st.carved.reset();
+
+        if (!written) {
+            write_octree_binary(out, grid.mu(), free, occupied);
+            summary.free = free.size();
         }
+    } catch (...) {
+        state_.reset();
+        throw;
     }
 
-    if (!written) {
-        write_octree_binary(out, grid.mu(), free, occupied);
-        summary.free = free.size();
-    }
     if (!out)
         throw Error(ErrorCode::kCannotWrite, "environment.bt: the OctoMap could not be written");
     summary.occupied = occupied.size();
