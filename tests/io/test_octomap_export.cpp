@@ -352,6 +352,15 @@ GrowingScans growing_scans() {
     return g;
 }
 
+// Whether the carver's next write gives the bytes of write_octomap_bt on the whole cloud.
+bool writes_the_whole_clouds_bytes(io::OctomapCarver& carver, const OccupancyGrid& grid,
+                                   const PointCloud& cloud, const SensorOrigins& origins) {
+    std::ostringstream step, whole;
+    (void)carver.write(step, grid, cloud, {}, origins, 2);
+    (void)io::write_octomap_bt(whole, grid, cloud, {}, origins, 2);
+    return step.str() == whole.str();
+}
+
 }  // namespace
 
 TEST(OctomapCarver, ScanByScanWritesWhatTheWholeCloudWouldGive) {
@@ -381,22 +390,15 @@ TEST(OctomapCarver, ACloudThatDidNotOnlyGrowStartsAfresh) {
     (void)carver.write(ignored, rc.grid, g.clouds[2], {}, g.origins[2], 2);
     // Fewer points (an earlier map), then other origins (another job): each as from scratch.
     for (const auto& [cloud, origins] :
-         {std::pair{g.clouds[1], g.origins[1]}, std::pair{g.clouds[2], SensorOrigins{}}}) {
-        std::ostringstream step, whole;
-        (void)carver.write(step, rc.grid, cloud, {}, origins, 2);
-        (void)io::write_octomap_bt(whole, rc.grid, cloud, {}, origins, 2);
-        EXPECT_TRUE(step.str() == whole.str());
-    }
+         {std::pair{g.clouds[1], g.origins[1]}, std::pair{g.clouds[2], SensorOrigins{}}})
+        EXPECT_TRUE(writes_the_whole_clouds_bytes(carver, rc.grid, cloud, origins));
     // Another resolution: its own rays.
     const OccupancyGrid coarse = occupancy_grid(rc.cloud, rc.result, [&] {
         GrowerConfig c = rc.config;
         c.mu = 0.05;
         return c;
     }());
-    std::ostringstream step, whole;
-    (void)carver.write(step, coarse, g.clouds[2], {}, g.origins[2], 2);
-    (void)io::write_octomap_bt(whole, coarse, g.clouds[2], {}, g.origins[2], 2);
-    EXPECT_TRUE(step.str() == whole.str());
+    EXPECT_TRUE(writes_the_whole_clouds_bytes(carver, coarse, g.clouds[2], g.origins[2]));
 }
 
 // A scan with a point beyond OctoMap's range is refused whole: the carver still holds the scans
@@ -411,10 +413,7 @@ TEST(OctomapCarver, AScanThatFailsLeavesWhatWasCarvedBefore) {
     bad.points.push_back({0.5f, 0.25f, 900.0f});
     bad.scan_index.push_back(2u);
     EXPECT_THROW((void)carver.write(ignored, rc.grid, bad, {}, g.origins[2], 2), Error);
-    std::ostringstream step, whole;
-    (void)carver.write(step, rc.grid, g.clouds[2], {}, g.origins[2], 2);
-    (void)io::write_octomap_bt(whole, rc.grid, g.clouds[2], {}, g.origins[2], 2);
-    EXPECT_TRUE(step.str() == whole.str());
+    EXPECT_TRUE(writes_the_whole_clouds_bytes(carver, rc.grid, g.clouds[2], g.origins[2]));
 }
 
 }  // namespace surfgrow

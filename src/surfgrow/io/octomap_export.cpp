@@ -370,9 +370,9 @@ OctomapSummary OctomapCarver::write(std::ostream& out, const OccupancyGrid& grid
                 // Written from the bits: listing and sorting millions of free leaves cost 4x
                 // the rays themselves (0.6 s on four fused scans). A carver used once may spend
                 // its bits; one that is kept subtracts from a copy.
-                std::unique_ptr<LeafSet> spent;
-                if (!keep_) spent = std::move(st.carved);
-                LeafSet& carved = spent ? *spent : *(spent = std::make_unique<LeafSet>(*st.carved));
+                const std::unique_ptr<LeafSet> spent =
+                    keep_ ? std::make_unique<LeafSet>(*st.carved) : std::move(st.carved);
+                LeafSet& carved = *spent;
                 carved.subtract(blocked);
                 LeafSet occupied_set(lo, hi);
                 for (const std::uint64_t key : occupied) occupied_set.insert(key);

@@ -143,16 +143,19 @@ Triangulation triangulate(const PolygonWithHoles& polygon) {
         const double f = (q[axis] - glo[axis]) / extent[axis] * side;
         return std::clamp(static_cast<int>(std::isfinite(f) ? f : 0.0), 0, side - 1);
     };
+    auto cell_index = [&](int gx, int gy) {
+        return static_cast<std::size_t>(gy) * static_cast<std::size_t>(side) +
+               static_cast<std::size_t>(gx);
+    };
+    auto cell_of_position = [&](std::size_t i) {
+        return cell_index(cell_of(v[loop[i]], 0), cell_of(v[loop[i]], 1));
+    };
     std::vector<std::size_t> start(static_cast<std::size_t>(side) * side + 1, 0), members(n);
-    for (std::size_t i = 0; i < n; ++i)
-        ++start[static_cast<std::size_t>(cell_of(v[loop[i]], 1)) * side +
-                static_cast<std::size_t>(cell_of(v[loop[i]], 0)) + 1];
+    for (std::size_t i = 0; i < n; ++i) ++start[cell_of_position(i) + 1];
     for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
     {
         std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-        for (std::size_t i = 0; i < n; ++i)
-            members[fill[static_cast<std::size_t>(cell_of(v[loop[i]], 1)) * side +
-                         static_cast<std::size_t>(cell_of(v[loop[i]], 0))]++] = i;
+        for (std::size_t i = 0; i < n; ++i) members[fill[cell_of_position(i)]++] = i;
     }
     std::vector<std::uint8_t> alive(n, 1);
     auto is_ear = [&](std::size_t b) {
@@ -164,8 +167,7 @@ Triangulation triangulate(const PolygonWithHoles& polygon) {
                   y1 = cell_of(hi, 1);
         for (int gy = y0; gy <= y1; ++gy)
             for (int gx = x0; gx <= x1; ++gx) {
-                const std::size_t g =
-                    static_cast<std::size_t>(gy) * side + static_cast<std::size_t>(gx);
+                const std::size_t g = cell_index(gx, gy);
                 for (std::size_t m = start[g]; m < start[g + 1]; ++m) {
                     const std::size_t k = members[m];
                     if (!alive[k] || k == a || k == b || k == c) continue;
