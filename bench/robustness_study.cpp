@@ -298,7 +298,12 @@ int main(int argc, char** argv) {
                     }
                     if (std::getenv("STUDY_MIXED")) {
                         // The surfaces made mostly of points on no face (mixed pixels): their
-                        // incidence on the line of sight, size and shape.
+                        // incidence (each member's line of sight from its own scan), size and
+                        // shape, and the patches around them as the minority rule weighs them:
+                        // homes within the pooling radius, those in the surface's plane (angle and
+                        // offset as pooling tests them) and the plane's share of the others'
+                        // neighbourhoods. The rule judges only surfaces with 3 patches around.
+                        const double pool_cos = std::cos(config.pool_angle_deg * M_PI / 180);
                         for (std::size_t k = 0; k < r.surfaces.size(); ++k) {
                             if (major[k] >= 0) continue;
                             const Surface& s = r.surfaces[k];
@@ -306,16 +311,51 @@ int main(int argc, char** argv) {
                             for (auto [f, cnt] : votes[k])
                                 if (f >= 0) planar_pts += cnt;
                             if (planar_pts < 3) continue;
-                            const Vec3d sight = s.home - cloud.scan_origins[0];
-                            const double inc =
-                                std::acos(std::abs(s.normal.dot(sight.normalized()))) * 180 / M_PI;
+                            double inc = 0, range = 0;
+                            std::uint64_t members = 0;
+                            for (std::size_t i = 0; i < cloud.size(); ++i) {
+                                if (r.labels[i] != static_cast<std::int32_t>(k)) continue;
+                                const std::size_t sc =
+                                    cloud.scan_index.empty() ? 0 : cloud.scan_index[i];
+                                const Vec3d ray =
+                                    cloud.points[i].cast<double>() - cloud.scan_origins[sc];
+                                inc += std::acos(std::min(
+                                           1.0, std::abs(s.normal.dot(ray.normalized())))) *
+                                       180 / M_PI;
+                                range += ray.norm();
+                                ++members;
+                            }
+                            int around = 0, coplanar = 0;
+                            double in_plane = s.neighbours, elsewhere = 0;
+                            for (std::size_t t = 0; t < r.surfaces.size(); ++t) {
+                                const Surface& b = r.surfaces[t];
+                                if (t == k || (b.home - s.home).norm() > config.pooling_radius())
+                                    continue;
+                                ++around;
+                                if (std::abs(b.normal.dot(s.normal)) < pool_cos) {
+                                    elsewhere += b.neighbours;
+                                    continue;
+                                }
+                                const double sigma = std::sqrt(
+                                    std::max({s.eigenvalues[0], b.eigenvalues[0], 0.0}));
+                                const double off =
+                                    std::clamp(3 * sigma, config.mu / 10, config.mu / 2);
+                                const Vec3d d = b.centroid - s.centroid;
+                                if (std::abs(s.normal.dot(d)) > off ||
+                                    std::abs(b.normal.dot(d)) > off)
+                                    continue;
+                                ++coplanar;
+                                in_plane += b.neighbours;
+                            }
                             std::printf(
                                 "      mixed surface %zu: %u members (%llu on faces), r %.0f "
                                 "mm, tol %.1f, ev %.2f %.2f %.2f, incidence %.0f deg, range "
-                                "%.2f\n",
+                                "%.2f; around %d, coplanar %d, plane share %.2f\n",
                                 k, s.point_count, (unsigned long long)planar_pts, s.radius * 1000,
                                 s.tolerance * 1000, s.eigenvalues[0] * 1e6, s.eigenvalues[1] * 1e6,
-                                s.eigenvalues[2] * 1e6, inc, sight.norm());
+                                s.eigenvalues[2] * 1e6, members ? inc / double(members) : 0.0,
+                                members ? range / double(members) : 0.0, around, coplanar,
+                                elsewhere > 0 ? in_plane / elsewhere : 0.0);
                         }
                     }
                     std::printf(
