@@ -8,11 +8,13 @@
 
 #include "commands.hpp"
 #include "exit_status.hpp"
+#include "process_memory.hpp"
 #include "surfgrow/core/error.hpp"
 
 int main(int argc, char** argv) {
     using namespace surfgrow;
     using namespace surfgrow::cli;
+    keep_freed_memory();
     const std::unique_ptr<CLI::App> made = make_app();
     CLI::App& app = *made;
     try {
