@@ -336,8 +336,8 @@ int main(int argc, char** argv) {
                                     elsewhere += b.neighbours;
                                     continue;
                                 }
-                                const double sigma = std::sqrt(
-                                    std::max({s.eigenvalues[0], b.eigenvalues[0], 0.0}));
+                                const double sigma =
+                                    std::sqrt(std::max({s.eigenvalues[0], b.eigenvalues[0], 0.0}));
                                 const double off =
                                     std::clamp(3 * sigma, config.mu / 10, config.mu / 2);
                                 const Vec3d d = b.centroid - s.centroid;
