@@ -361,6 +361,14 @@ bool writes_the_whole_clouds_bytes(io::OctomapCarver& carver, const OccupancyGri
     return step.str() == whole.str();
 }
 
+// A carver that has written scans 0..k.
+io::OctomapCarver carver_through(const GrowingScans& g, std::size_t k) {
+    io::OctomapCarver carver;
+    std::ostringstream ignored;
+    (void)carver.write(ignored, room_corner().grid, g.clouds[k], {}, g.origins[k], 2);
+    return carver;
+}
+
 }  // namespace
 
 TEST(OctomapCarver, ScanByScanWritesWhatTheWholeCloudWouldGive) {
@@ -385,9 +393,7 @@ TEST(OctomapCarver, ScanByScanWritesWhatTheWholeCloudWouldGive) {
 TEST(OctomapCarver, ACloudThatDidNotOnlyGrowStartsAfresh) {
     const RoomCorner& rc = room_corner();
     const GrowingScans g = growing_scans();
-    io::OctomapCarver carver;
-    std::ostringstream ignored;
-    (void)carver.write(ignored, rc.grid, g.clouds[2], {}, g.origins[2], 2);
+    io::OctomapCarver carver = carver_through(g, 2);
     // Fewer points (an earlier map), then other origins (another job): each as from scratch.
     for (const auto& [cloud, origins] :
          {std::pair{g.clouds[1], g.origins[1]}, std::pair{g.clouds[2], SensorOrigins{}}})
@@ -406,9 +412,8 @@ TEST(OctomapCarver, ACloudThatDidNotOnlyGrowStartsAfresh) {
 TEST(OctomapCarver, AScanThatFailsLeavesWhatWasCarvedBefore) {
     const RoomCorner& rc = room_corner();
     const GrowingScans g = growing_scans();
-    io::OctomapCarver carver;
+    io::OctomapCarver carver = carver_through(g, 1);
     std::ostringstream ignored;
-    (void)carver.write(ignored, rc.grid, g.clouds[1], {}, g.origins[1], 2);
     PointCloud bad = g.clouds[2];
     bad.points.push_back({0.5f, 0.25f, 900.0f});
     bad.scan_index.push_back(2u);

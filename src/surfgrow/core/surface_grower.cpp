@@ -454,10 +454,10 @@ void label_by_surface(std::span<std::int32_t> labels, std::span<const GrownSurfa
 /// The reported surfaces of the grown ones (statistics come later), with each one's home (sorted
 /// index) and registration tolerance (both sized like `all`).
 void surfaces_of(std::span<const GrownSurface> all, const CubeIndex& index, int threads,
-                 std::size_t spare, std::vector<Surface>& surfaces,
-                 std::span<std::uint32_t> home_of, std::span<double> tolerance) {
+                 std::vector<Surface>& surfaces, std::span<std::uint32_t> home_of,
+                 std::span<double> tolerance) {
     const std::size_t count = all.size();
-    reserve_bulk(surfaces, count + spare);
+    reserve_bulk(surfaces, count);
     surfaces.resize(count);
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t k = 0; k < count; ++k) {
@@ -647,23 +647,27 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
     BulkVector<GrownSurface> all = grow_slabs(ctx, slabs, threads, scratch, st, report);
     label_by_surface(labels, all, threads);
     const std::size_t surface_count = all.size();
-    // Room for the strips (stage 3b) from the start: growing a vector of surfaces later copies
-    // it into fresh pages, which cost 7 ms of a 75 ms growing in this VM. A strip's first ball
-    // holds min_pts leftovers; room never touched costs no memory.
+    // Strips (stage 3b) are grown with the disk test, not in fused clouds: their leftovers are
+    // mostly other scans' layers and mixed pixels (there strips added 0.01-0.03 % of
+    // registration, serially; docs/algorithm.md). Room for them from the start: growing the
+    // vectors later copies every surface into fresh pages, which cost 7 ms of a 75 ms growing in
+    // this VM. A strip's first ball holds min_pts leftovers; room never touched costs no memory.
     const bool strips =
         cfg.plane_test == PlaneTest::kDisk && cfg.attach_leftovers && !sight.fused();
-    const std::size_t spare =
-        strips ? static_cast<std::size_t>(std::count(labels.begin(), labels.end(), -1)) /
-                         static_cast<std::size_t>(std::max(cfg.min_pts, 1)) +
-                     64
-               : 0;
+    const std::size_t room =
+        surface_count +
+        (strips ? static_cast<std::size_t>(std::count(labels.begin(), labels.end(), -1)) /
+                          static_cast<std::size_t>(std::max(cfg.min_pts, 1)) +
+                      64
+                : 0);
+    reserve_bulk(result.surfaces, room);
     std::vector<std::uint32_t> home_of;  // sorted index of each surface's home
     std::vector<double> tolerance;
-    home_of.reserve(surface_count + spare);
-    tolerance.reserve(surface_count + spare);
+    home_of.reserve(room);
+    tolerance.reserve(room);
     home_of.resize(surface_count);
     tolerance.resize(surface_count);
-    surfaces_of(all, index, threads, spare, result.surfaces, home_of, tolerance);
+    surfaces_of(all, index, threads, result.surfaces, home_of, tolerance);
     if (cfg.pool_angle_deg > 0 && surface_count > 0)
         refine_normals(cfg, index, threads, all, result.surfaces, tolerance, labels, st);
     release(all);
@@ -675,11 +679,8 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
     const GrowContext late{index, cfg, labels, {}, sight, noise, layers};  // distances released
     if (cfg.attach_leftovers && surface_count > 0)
         attach_leftovers(late, slabs, result.surfaces, tolerance, threads, labels);
-    // --- Stage 3b: strips narrower than a ball, from the points no surface fits. Not in fused
-    // clouds, whose leftovers are mostly other scans' layers and mixed pixels: there strips added
-    // 0.01-0.03 % of registration, serially (docs/algorithm.md).
-    if (cfg.attach_leftovers && !sight.fused())
-        st.strip_surfaces = grow_strips(late, result.surfaces, home_of, tolerance);
+    // --- Stage 3b: strips narrower than a ball, from the points no surface fits (`strips`: where).
+    if (strips) st.strip_surfaces = grow_strips(late, result.surfaces, home_of, tolerance);
     // ... and a strip's plane reaches beyond its ball: the points still left go to the strip
     // they fit best, by the leftover pass's rules (no other surface fits them: the pass before).
     if (st.strip_surfaces > 0)
