@@ -107,8 +107,7 @@ TEST(PatchAdjacency, EqualsBruteForceForAnyThreadCount) {
                 const Pairs truth = brute_force(p, reach);
                 ASSERT_GT(truth.size(), 300u);  // the test has pairs of both kinds to find
                 for (const int threads : {1, 3}) {
-                    const Pairs got =
-                        adjacent_patch_pairs(p.points, members, p.surfaces, reach, threads);
+                    const Pairs got = adjacent_patch_pairs(members, p.surfaces, reach, threads);
                     EXPECT_EQ(got, truth) << "plate " << thickness << ", seed " << seed
                                           << ", reach " << reach << ", " << threads << " threads";
                 }
@@ -132,8 +131,8 @@ TEST(PatchAdjacency, MembersAloneMakeNeighboursAcrossAnyHomeDistance) {
     p.surfaces[0].radius = p.surfaces[1].radius = 0.01;
     p.used = {1, 1};
     const PatchMembers members = collect_patch_members(p.points, p.labels, 2);
-    EXPECT_EQ(adjacent_patch_pairs(p.points, members, p.surfaces, 0.0021, 1), (Pairs{{0, 1}}));
-    EXPECT_TRUE(adjacent_patch_pairs(p.points, members, p.surfaces, 0.0019, 1).empty());
+    EXPECT_EQ(adjacent_patch_pairs(members, p.surfaces, 0.0021, 1), (Pairs{{0, 1}}));
+    EXPECT_TRUE(adjacent_patch_pairs(members, p.surfaces, 0.0019, 1).empty());
 }
 
 }  // namespace

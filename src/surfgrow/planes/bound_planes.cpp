@@ -98,8 +98,7 @@ CentredMoments inlier_moments(std::span<const Vec3d> points, const Vec3d& normal
 constexpr std::size_t kFragmentPatches = 2;
 constexpr double kFragmentFit = 0.8;
 
-void absorb_fragments(std::span<const Vec3f> points, const PatchMembers& members,
-                      const std::vector<std::uint32_t>& adj_off,
+void absorb_fragments(const PatchMembers& members, const std::vector<std::uint32_t>& adj_off,
                       const std::vector<std::uint32_t>& adj, const BoundPlaneConfig& cfg,
                       std::vector<std::int32_t>& region,
                       std::vector<std::vector<std::uint32_t>>& region_members,
@@ -132,9 +131,9 @@ void absorb_fragments(std::span<const Vec3f> points, const PatchMembers& members
             const Plane& plane = planes[static_cast<std::size_t>(q)];
             std::size_t fit = 0, total = 0;
             for (const std::uint32_t p : region_members[r])
-                for (const std::uint32_t i : members.of(p)) {
+                for (const Vec3f& x : members.points_of(p)) {
                     ++total;
-                    fit += std::abs(plane.signed_distance(points[i].cast<double>())) <=
+                    fit += std::abs(plane.signed_distance(x.cast<double>())) <=
                            tolerance[static_cast<std::size_t>(q)];
                 }
             const double share = total ? double(fit) / double(total) : 0.0;
@@ -301,20 +300,19 @@ void check_grow_result(const CloudView& cloud, std::span<const Surface> surfaces
 
 // The moments of each patch's member points (accumulated about its home point); `used` marks the
 // patches with members. Returns the median patch thickness sqrt(lambda_min): the cloud's noise.
-double patch_moments(std::span<const Vec3f> points, std::span<const Surface> surfaces,
-                     const PatchMembers& members, std::vector<CentredMoments>& moments,
-                     std::vector<std::uint8_t>& used, int threads) {
+double patch_moments(std::span<const Surface> surfaces, const PatchMembers& members,
+                     std::vector<CentredMoments>& moments, std::vector<std::uint8_t>& used,
+                     int threads) {
     // Each patch's sums in its members' order, whichever thread: the same bits for any count.
     const auto ns = static_cast<std::ptrdiff_t>(surfaces.size());
 #pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
     for (std::ptrdiff_t k = 0; k < ns; ++k) {
         const auto s = static_cast<std::size_t>(k);
-        const auto idx = members.of(s);
-        if (idx.empty()) continue;
+        const auto xs = members.points_of(s);
+        if (xs.empty()) continue;
         used[s] = 1;
         Moments about_home;
-        for (const std::uint32_t i : idx)
-            about_home.add(points[i].cast<double>() - surfaces[s].home);
+        for (const Vec3f& x : xs) about_home.add(x.cast<double>() - surfaces[s].home);
         moments[s] = CentredMoments::of(about_home, surfaces[s].home);
     }
     std::vector<double> thickness;
@@ -436,8 +434,8 @@ Regions grow_regions(std::span<const Surface> surfaces, const PatchMembers& memb
 
 // A region's bound plane: the least-squares plane of its members' points, refitted to its inliers,
 // oriented by its patches' normals, with its frame, bounds and boundary polygons.
-BoundPlane fit_region(std::span<const Vec3f> cloud_points, std::span<const Surface> surfaces,
-                      const PatchMembers& members, const std::vector<CentredMoments>& moments,
+BoundPlane fit_region(std::span<const Surface> surfaces, const PatchMembers& members,
+                      const std::vector<CentredMoments>& moments,
                       const std::vector<std::uint32_t>& list, const CentredMoments& all,
                       const BoundPlaneConfig& cfg) {
     BoundPlane plane;
@@ -446,8 +444,7 @@ BoundPlane fit_region(std::span<const Vec3f> cloud_points, std::span<const Surfa
     std::vector<Vec3d> points;  // the members, contiguous: every pass below streams them
     points.reserve(static_cast<std::size_t>(all.n));
     for (const std::uint32_t s : list)
-        for (const std::uint32_t i : members.of(s))
-            points.push_back(cloud_points[i].cast<double>());
+        for (const Vec3f& x : members.points_of(s)) points.push_back(x.cast<double>());
     if (!fit.degenerate) {
         // Until the inliers stop changing (two or three passes on the test scenes).
         const double spread = std::sqrt(all.scatter.trace() / all.n);
@@ -599,18 +596,17 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
     const PatchMembers members = collect_patch_members(cloud.points, labels, ns);
     std::vector<CentredMoments> moments(ns);
     std::vector<std::uint8_t> used(ns, 0);
-    out.stats.noise = patch_moments(cloud.points, surfaces, members, moments, used, threads);
+    out.stats.noise = patch_moments(surfaces, members, moments, used, threads);
     resolve_defaults(cfg, out.stats.noise);
     if (ns == 0 || members.index.empty()) return out;
 
     // Patch graph, regions of coplanar patches, fragments absorbed and gaps bridged.
-    const auto pairs =
-        adjacent_patch_pairs(cloud.points, members, surfaces, cfg.adjacency, threads);
+    const auto pairs = adjacent_patch_pairs(members, surfaces, cfg.adjacency, threads);
     out.stats.adjacent_pairs = pairs.size();
     const PatchGraph graph = patch_graph(pairs, ns);
     Regions regions = grow_regions(surfaces, members, moments, used, graph, cfg);
-    absorb_fragments(cloud.points, members, graph.off, graph.adj, cfg, regions.of_patch,
-                     regions.members, regions.moments, moments);
+    absorb_fragments(members, graph.off, graph.adj, cfg, regions.of_patch, regions.members,
+                     regions.moments, moments);
     bridge_gaps(surfaces, used, regions.of_patch, cfg, regions.members, regions.moments, threads);
     std::erase_if(regions.members, [](const std::vector<std::uint32_t>& l) { return l.empty(); });
     std::erase_if(regions.moments, [](const CentredMoments& m) { return m.n == 0; });
@@ -623,8 +619,8 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (std::size_t r = 0; r < nr; ++r)
         errors.run(r, [&] {
-            planes[r] = fit_region(cloud.points, surfaces, members, moments, regions.members[r],
-                                   regions.moments[r], cfg);
+            planes[r] =
+                fit_region(surfaces, members, moments, regions.members[r], regions.moments[r], cfg);
         });
     errors.rethrow();
     publish_planes(planes, out);

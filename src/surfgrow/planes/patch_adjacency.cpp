@@ -84,13 +84,13 @@ std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Aabb>& 
     return found;
 }
 
-// The members among `idx` within `pad` of box `other` on every axis, into `out`.
-void members_near(std::span<const Vec3f> points, std::span<const std::uint32_t> idx,
-                  const Aabb& other, double pad, std::vector<Vec3d>& out) {
+// The points among `members` within `pad` of box `other` on every axis, into `out`.
+void members_near(std::span<const Vec3f> members, const Aabb& other, double pad,
+                  std::vector<Vec3d>& out) {
     out.clear();
     const Aabb grown{other.min.array() - pad, other.max.array() + pad};
-    for (const std::uint32_t i : idx) {
-        const Vec3d p = points[i].cast<double>();
+    for (const Vec3f& x : members) {
+        const Vec3d p = x.cast<double>();
         if (grown.contains(p)) out.push_back(p);
     }
 }
@@ -124,8 +124,7 @@ bool any_within(std::vector<Vec3d>& a, std::vector<Vec3d>& b, double reach) {
 // patch), and only then are members near the other's box compared. Sorted, unique pairs
 // (a < b); the final sort makes the result independent of the thread count.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_patch_pairs(
-    std::span<const Vec3f> points, const PatchMembers& members, std::span<const Surface> surfaces,
-    double reach, int threads) {
+    const PatchMembers& members, std::span<const Surface> surfaces, double reach, int threads) {
     const std::size_t ns = surfaces.size();
     std::vector<Aabb> box(ns), ball(ns);
     std::vector<std::uint8_t> with_members(ns, 0);
@@ -134,7 +133,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_patch_pairs(
         const auto s = static_cast<std::size_t>(k);
         if (members.of(s).empty()) continue;
         with_members[s] = 1;
-        for (const std::uint32_t i : members.of(s)) box[s].add(points[i].cast<double>());
+        for (const Vec3f& x : members.points_of(s)) box[s].add(x.cast<double>());
         ball[s] = {surfaces[s].home.array() - surfaces[s].radius,
                    surfaces[s].home.array() + surfaces[s].radius};
     }
@@ -146,9 +145,9 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_patch_pairs(
     const auto touching = near_box_pairs(
         box, with_members, reach, threads, [&](std::uint32_t a, std::uint32_t b, Scratch& scratch) {
             if (homes_within_radii(a, b, scratch)) return false;  // the other rule has it
-            members_near(points, members.of(a), box[b], reach, scratch.near_a);
+            members_near(members.points_of(a), box[b], reach, scratch.near_a);
             if (scratch.near_a.empty()) return false;
-            members_near(points, members.of(b), box[a], reach, scratch.near_b);
+            members_near(members.points_of(b), box[a], reach, scratch.near_b);
             return !scratch.near_b.empty() && any_within(scratch.near_a, scratch.near_b, reach);
         });
     const std::vector<std::uint64_t> packed = merged_unique({&touching, &near_homes});

@@ -84,7 +84,6 @@ void for_each_home_near(const CubeIndex& index, const Vec3d& home, double reach,
 /// sum of the radii, among the surfaces with members. Sorted, unique pairs (a < b); the same for
 /// any thread count.
 [[nodiscard]] std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_patch_pairs(
-    std::span<const Vec3f> points, const PatchMembers& members, std::span<const Surface> surfaces,
-    double reach, int threads);
+    const PatchMembers& members, std::span<const Surface> surfaces, double reach, int threads);
 
 }  // namespace surfgrow

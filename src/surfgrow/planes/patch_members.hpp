@@ -10,13 +10,19 @@
 
 namespace surfgrow {
 
-/// Member points of each surface in input order, as CSR offsets and indices. Points with a
-/// non-finite coordinate belong to no surface here.
+/// Member points of each surface in input order, as CSR offsets and indices, and their
+/// coordinates in the same order: the passes over a patch's members stream them instead of
+/// gathering them from the whole cloud (a cache miss per point on a map of millions). Points with
+/// a non-finite coordinate belong to no surface here.
 struct PatchMembers {
     std::vector<std::uint32_t> offset;  ///< surfaces + 1
     std::vector<std::uint32_t> index;   ///< point indices, surface by surface
+    std::vector<Vec3f> point;           ///< point[k] = the cloud's point index[k]
     [[nodiscard]] std::span<const std::uint32_t> of(std::size_t s) const {
         return {index.data() + offset[s], offset[s + 1] - offset[s]};
+    }
+    [[nodiscard]] std::span<const Vec3f> points_of(std::size_t s) const {
+        return {point.data() + offset[s], offset[s + 1] - offset[s]};
     }
 };
 
