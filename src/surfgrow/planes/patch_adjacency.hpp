@@ -38,15 +38,26 @@ namespace surfgrow {
            (largest + b.size().maxCoeff());
 }
 
+/// How many cubes on each side of its own a search of `reach` (world units) visits. The margin
+/// makes a reach of exactly k cubes search k + 1: the cube side is enlarged by 2^-20 against
+/// float rounding, which a ratio rounded down could undo.
+[[nodiscard]] inline double search_ring(const CubeIndex& index, double reach) {
+    return std::max(1.0, std::ceil(reach / index.cube_size() * (1 + 1e-6)));
+}
+
+/// Whether the columns of a search `ring` cubes wide would outnumber the index's cubes (a search
+/// as large as the cloud): then it reads every point in one run instead.
+[[nodiscard]] inline bool search_spans_index(const CubeIndex& index, double ring) {
+    return (2 * ring + 1) * (2 * ring + 1) > static_cast<double>(index.cube_count());
+}
+
 /// Calls f(run) for runs of `index` holding every point within `reach` (world units) of the local
-/// position `h`: the column runs of the cubes around it, or, where those columns would outnumber
-/// the index's cubes (a search as large as the cloud), every point in one run.
+/// position `h`: the column runs of the cubes around it, or every point in one run
+/// (search_spans_index).
 template <class F>
 void for_each_run_near(const CubeIndex& index, const Vec3f& h, double reach, F&& f) {
-    // The margin makes a reach of exactly k cubes search k + 1: the cube side is enlarged by
-    // 2^-20 against float rounding, which a ratio rounded down could undo.
-    const double ring = std::max(1.0, std::ceil(reach / index.cube_size() * (1 + 1e-6)));
-    if ((2 * ring + 1) * (2 * ring + 1) > static_cast<double>(index.cube_count())) {
+    const double ring = search_ring(index, reach);
+    if (search_spans_index(index, ring)) {
         f(CubeIndex::Range{0, static_cast<std::uint32_t>(index.size())});
         return;
     }
