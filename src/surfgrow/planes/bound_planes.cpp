@@ -184,7 +184,8 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
     // same for any thread count). Patches a, b qualify when |home b - home a| - r_a - r_b is at
     // most the gap, so within gap + 2 max(r_a, r_b): each pair is found from its larger patch,
     // whose search then need not allow for the largest radius of all. Cubes suit the common one.
-    const CubeIndex index(homes, cfg.max_gap + 2 * median_of(std::move(radii)), used, 1);
+    const CubeIndex index(
+        homes, (cfg.max_gap + 2 * median_of(std::move(radii))) * kSearchSideMargin, used, 1);
     const auto original = index.original_indices();
     // Regions in the index's order, -1 for regions absorbed as fragments: most homes within reach
     // are of the patch's own region, and this skips them before any distance.

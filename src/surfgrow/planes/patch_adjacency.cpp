@@ -24,9 +24,6 @@ bool near_on_axis(const Aabb& a, const Aabb& b, int axis, double pad) {
     return b.min[axis] - a.max[axis] <= pad && a.min[axis] - b.max[axis] <= pad;
 }
 
-// The index's cube side per median search reach (see near_box_pairs).
-constexpr double kSideMargin = 1.01;
-
 // What a pair test may reuse between calls on one thread.
 struct Scratch {
     std::vector<Vec3d> near_a, near_b;
@@ -55,7 +52,7 @@ std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Aabb>& 
     std::nth_element(halves.begin(), halves.begin() + halves.size() / 2, halves.end());
     // A little more than the median box's reach, so that its search (whose margins push the
     // reach just past it) stays within one cube around its own: 9 columns instead of 25.
-    double side = (2 * halves[halves.size() / 2] + pad) * kSideMargin;
+    double side = (2 * halves[halves.size() / 2] + pad) * kSearchSideMargin;
     if (!(side > 0)) side = 1;  // boxes that are points, touching only when they coincide
     const CubeIndex index(centre, side, use, 1);
     const auto original = index.original_indices();

@@ -38,6 +38,11 @@ namespace surfgrow {
            (largest + b.size().maxCoeff());
 }
 
+/// An index built for searches of a typical reach takes cubes this much larger than that reach:
+/// search_ring()'s margins push such a search just past one cube, which would double the columns'
+/// side (25 instead of 9).
+constexpr double kSearchSideMargin = 1.01;
+
 /// How many cubes on each side of its own a search of `reach` (world units) visits. The margin
 /// makes a reach of exactly k cubes search k + 1: the cube side is enlarged by 2^-20 against
 /// float rounding, which a ratio rounded down could undo.
