@@ -116,6 +116,36 @@ TEST(PatchAdjacency, EqualsBruteForceForAnyThreadCount) {
     }
 }
 
+TEST(PatchMembers, EachSurfacesPointsInInputOrderForAnyThreadCount) {
+    // Labels of every kind: none, a surface with no members, NaN points, runs and singletons.
+    std::vector<Vec3f> points;
+    std::vector<std::int32_t> labels;
+    const std::size_t surfaces = 7;
+    for (std::uint32_t i = 0; i < 5000; ++i) {
+        const float x = static_cast<float>(i);
+        points.emplace_back(x, i % 97 == 0 ? std::nanf("") : -x, 1.f);
+        const std::uint32_t h = (i * 2654435761u) >> 24;
+        labels.push_back(h % 9 == 0 ? -1 : static_cast<std::int32_t>(i < 2000 ? h % 3 : h % 7));
+        if (labels.back() == 5) labels.back() = 6;  // surface 5 keeps no member
+    }
+    for (const int threads : {1, 2, 3, 8}) {
+        const PatchMembers m = collect_patch_members(points, labels, surfaces, threads);
+        ASSERT_EQ(m.offset.size(), surfaces + 1);
+        for (std::size_t s = 0; s < surfaces; ++s) {
+            std::vector<std::uint32_t> truth;
+            for (std::uint32_t i = 0; i < labels.size(); ++i)
+                if (labels[i] == static_cast<std::int32_t>(s) && is_finite(points[i]))
+                    truth.push_back(i);
+            const auto got = m.of(s);
+            EXPECT_EQ(std::vector<std::uint32_t>(got.begin(), got.end()), truth)
+                << "surface " << s << ", " << threads << " threads";
+            for (std::size_t k = 0; k < got.size(); ++k)
+                EXPECT_EQ(m.points_of(s)[k], points[got[k]]);
+        }
+        EXPECT_TRUE(m.of(5).empty());
+    }
+}
+
 TEST(PatchAdjacency, MembersAloneMakeNeighboursAcrossAnyHomeDistance) {
     // Two long strips meeting end to end: their homes far apart, their ends 2 mm apart.
     Patches p;

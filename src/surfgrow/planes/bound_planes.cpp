@@ -594,7 +594,7 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
     out.stats.patches = ns;
 
     // Member points and their moments per patch; the defaults that depend on the noise.
-    const PatchMembers members = collect_patch_members(cloud.points, labels, ns);
+    const PatchMembers members = collect_patch_members(cloud.points, labels, ns, threads);
     std::vector<CentredMoments> moments(ns);
     std::vector<std::uint8_t> used(ns, 0);
     out.stats.noise = patch_moments(surfaces, members, moments, used, threads);

@@ -1,24 +1,49 @@
 #include "surfgrow/planes/patch_members.hpp"
 
+#include <omp.h>
+
+#include <algorithm>
+#include <utility>
+
 namespace surfgrow {
 
 PatchMembers collect_patch_members(std::span<const Vec3f> points,
-                                   std::span<const std::int32_t> labels, std::size_t surfaces) {
+                                   std::span<const std::int32_t> labels, std::size_t surfaces,
+                                   int threads) {
+    // A counting sort in `parts` slices of the input: each slice counts its members per surface,
+    // then writes them after the earlier slices' (input order within each surface, whichever
+    // thread writes it).
+    const std::size_t n = labels.size();
+    const auto parts = static_cast<std::size_t>(std::max(1, threads));
+    std::vector<std::vector<std::uint32_t>> at(parts, std::vector<std::uint32_t>(surfaces, 0));
+    auto member = [&](std::size_t i) { return labels[i] >= 0 && is_finite(points[i]); };
+    auto slice = [&](std::size_t k) { return std::pair{k * n / parts, (k + 1) * n / parts}; };
+#pragma omp parallel for num_threads(threads) schedule(static, 1)
+    for (std::size_t k = 0; k < parts; ++k) {
+        const auto [begin, end] = slice(k);
+        for (std::size_t i = begin; i < end; ++i)
+            if (member(i)) ++at[k][static_cast<std::size_t>(labels[i])];
+    }
     PatchMembers m;
     m.offset.assign(surfaces + 1, 0);
-    for (std::size_t i = 0; i < labels.size(); ++i)
-        if (labels[i] >= 0 && is_finite(points[i]))
-            ++m.offset[static_cast<std::size_t>(labels[i]) + 1];
-    for (std::size_t s = 0; s < surfaces; ++s) m.offset[s + 1] += m.offset[s];
-    m.index.resize(m.offset[surfaces]);
-    m.point.resize(m.offset[surfaces]);
-    std::vector<std::uint32_t> fill(m.offset.begin(), m.offset.end() - 1);
-    for (std::size_t i = 0; i < labels.size(); ++i)
-        if (labels[i] >= 0 && is_finite(points[i])) {
-            const std::uint32_t k = fill[static_cast<std::size_t>(labels[i])]++;
-            m.index[k] = static_cast<std::uint32_t>(i);
-            m.point[k] = points[i];
-        }
+    std::uint32_t next = 0;
+    for (std::size_t s = 0; s < surfaces; ++s) {
+        m.offset[s] = next;
+        for (std::size_t k = 0; k < parts; ++k) next += std::exchange(at[k][s], next);
+    }
+    m.offset[surfaces] = next;
+    m.index.resize(next);
+    m.point.resize(next);
+#pragma omp parallel for num_threads(threads) schedule(static, 1)
+    for (std::size_t k = 0; k < parts; ++k) {
+        const auto [begin, end] = slice(k);
+        for (std::size_t i = begin; i < end; ++i)
+            if (member(i)) {
+                const std::uint32_t j = at[k][static_cast<std::size_t>(labels[i])]++;
+                m.index[j] = static_cast<std::uint32_t>(i);
+                m.point[j] = points[i];
+            }
+    }
     return m;
 }
 

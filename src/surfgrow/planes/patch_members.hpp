@@ -26,9 +26,10 @@ struct PatchMembers {
     }
 };
 
-/// The members of `surfaces` surfaces from labels (-1: none; every label < surfaces).
+/// The members of `surfaces` surfaces from labels (-1: none; every label < surfaces); the same
+/// for any thread count.
 [[nodiscard]] PatchMembers collect_patch_members(std::span<const Vec3f> points,
                                                  std::span<const std::int32_t> labels,
-                                                 std::size_t surfaces);
+                                                 std::size_t surfaces, int threads = 1);
 
 }  // namespace surfgrow
