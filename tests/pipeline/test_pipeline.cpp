@@ -198,6 +198,41 @@ TEST(Pipeline, ReportsItsStagesInOrderEndingWithDone) {
               (std::vector<std::string>{"planes", "coverage", "occupancy", "collision", "done"}));
 }
 
+// finish() (a Map's path) builds the occupancy grid and the collision spheres while the planes
+// run: the same outputs as run() gives, for any thread count.
+TEST(Pipeline, FinishGivesWhatRunGivesForAnyThreadCount) {
+    const PointCloud cloud = scene_cloud();
+    for (const int threads : {1, 2, 3}) {
+        PipelineConfig config;
+        config.grow.threads = threads;
+        const Pipeline pipeline(config);
+        const PipelineResult whole = pipeline.run(cloud);
+        const PipelineResult r = pipeline.finish(cloud, grow_surfaces(cloud, config.grow));
+        expect_same_surfaces(r.grow, whole.grow);
+        ASSERT_TRUE(r.planes && r.coverage && r.occupancy && r.collision);
+        ASSERT_EQ(r.planes->planes.size(), whole.planes->planes.size());
+        EXPECT_EQ(r.planes->stats.area, whole.planes->stats.area);
+        expect_same_coverage(*r.coverage, *whole.coverage);
+        expect_same_grid(*r.occupancy, *whole.occupancy);
+        EXPECT_EQ(r.collision->size(), whole.collision->size());
+    }
+}
+
+// A stage that throws while the grid is built beside it: the error reaches the caller, after
+// the other thread is done with the result it was filling (ASan sees any use after that).
+TEST(Pipeline, FinishReportsABadGrowResultWhileTheGridIsBuilt) {
+    const PointCloud cloud = scene_cloud();
+    PipelineConfig config;
+    config.grow.threads = 2;
+    const Pipeline pipeline(config);
+    GrowResult grown = grow_surfaces(cloud, config.grow);
+    GrowResult stray = grown;
+    stray.labels[stray.labels.size() / 2] = static_cast<std::int32_t>(stray.surfaces.size());
+    EXPECT_THROW((void)pipeline.finish(cloud, std::move(stray)), Error);
+    grown.labels.pop_back();
+    EXPECT_THROW((void)pipeline.finish(cloud, std::move(grown)), Error);
+}
+
 TEST(Pipeline, AnIndexOfAnotherCloudIsRefused) {
     const PointCloud cloud = scene_cloud();
     PointCloud other = cloud;
