@@ -457,8 +457,7 @@ void surfaces_of(std::span<const GrownSurface> all, const CubeIndex& index, int 
                  std::vector<Surface>& surfaces, std::span<std::uint32_t> home_of,
                  std::span<double> tolerance) {
     const std::size_t count = all.size();
-    reserve_bulk(surfaces, count);
-    surfaces.resize(count);
+    surfaces.resize(count);  // within the room grow() reserved
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t k = 0; k < count; ++k) {
         const GrownSurface& g = all[k];

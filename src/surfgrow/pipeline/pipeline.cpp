@@ -68,25 +68,22 @@ PipelineResult Pipeline::outputs(const CloudView& cloud, GrowResult grown,
             r.seconds.collision = watch.seconds();
         }
     };
+    // If the planes throw, this future's destructor (std::async's) waits for the task, which
+    // fills r, before r goes: it is declared after r.
     std::future<void> meanwhile;
     if ((c.occupancy || c.collision) && resolve_threads(c.grow.threads) > 1)
         meanwhile = std::async(std::launch::async, occupancy_and_collision);
-    try {
-        if (c.planes) {
-            const Stopwatch watch;
-            r.planes = compute_bound_planes(cloud, r.grow.surfaces, r.grow.labels, *c.planes);
-            r.seconds.planes = watch.seconds();
-            report("planes");
-            if (c.coverage) {
-                const Stopwatch cover;
-                r.coverage = plan_coverage(*r.planes, r.grow.surfaces, *c.coverage);
-                r.seconds.coverage = cover.seconds();
-                report("coverage");
-            }
+    if (c.planes) {
+        const Stopwatch watch;
+        r.planes = compute_bound_planes(cloud, r.grow.surfaces, r.grow.labels, *c.planes);
+        r.seconds.planes = watch.seconds();
+        report("planes");
+        if (c.coverage) {
+            const Stopwatch cover;
+            r.coverage = plan_coverage(*r.planes, r.grow.surfaces, *c.coverage);
+            r.seconds.coverage = cover.seconds();
+            report("coverage");
         }
-    } catch (...) {
-        if (meanwhile.valid()) meanwhile.wait();  // it reads r: let it finish first
-        throw;
     }
     if (meanwhile.valid()) {
         meanwhile.get();  // rethrows what it threw

@@ -50,8 +50,7 @@ std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Aabb>& 
     std::vector<std::vector<std::uint64_t>> found(static_cast<std::size_t>(threads));
     if (halves.empty()) return found;
     std::nth_element(halves.begin(), halves.begin() + halves.size() / 2, halves.end());
-    // A little more than the median box's reach, so that its search (whose margins push the
-    // reach just past it) stays within one cube around its own: 9 columns instead of 25.
+    // The median box's search then stays within one cube around its own (kSearchSideMargin).
     double side = (2 * halves[halves.size() / 2] + pad) * kSearchSideMargin;
     if (!(side > 0)) side = 1;  // boxes that are points, touching only when they coincide
     const CubeIndex index(centre, side, use, 1);

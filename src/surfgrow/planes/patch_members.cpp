@@ -29,7 +29,8 @@ PatchMembers collect_patch_members(std::span<const Vec3f> points,
     std::uint32_t next = 0;
     for (std::size_t s = 0; s < surfaces; ++s) {
         m.offset[s] = next;
-        for (std::size_t k = 0; k < parts; ++k) next += std::exchange(at[k][s], next);
+        for (std::size_t k = 0; k < parts; ++k)  // slice k's count becomes its first slot
+            next += std::exchange(at[k][s], next);
     }
     m.offset[surfaces] = next;
     m.index.resize(next);
