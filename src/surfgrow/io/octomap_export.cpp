@@ -212,9 +212,11 @@ std::vector<std::pair<std::uint32_t, std::uint64_t>> rays_of(const octomap::OcTr
             errors.run(k, [&] {
                 std::uint32_t origin = 0;
                 std::uint64_t end = 0;
+                // Filled here and moved: neighbouring chunks' vectors share a cache line.
+                std::vector<std::uint64_t> mine;
                 for (std::size_t i = from + k * n / chunks; i < from + (k + 1) * n / chunks; ++i)
-                    if (ray_of(i, origin, end))
-                        part[k].push_back((std::uint64_t{origin} << 48) | end);
+                    if (ray_of(i, origin, end)) mine.push_back((std::uint64_t{origin} << 48) | end);
+                part[k] = std::move(mine);
             });
         errors.rethrow();
         std::vector<std::uint64_t> packed;

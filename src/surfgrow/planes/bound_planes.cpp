@@ -205,7 +205,8 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
     std::vector<std::vector<std::uint64_t>> found(static_cast<std::size_t>(threads));
 #pragma omp parallel num_threads(threads)
     {
-        std::vector<std::uint64_t>& out = found[static_cast<std::size_t>(omp_get_thread_num())];
+        // Filled here and moved: two threads' vectors side by side would share a cache line.
+        std::vector<std::uint64_t> out;
         // The patch that last paired with each region: later homes of that region are skipped.
         std::vector<std::size_t> paired_by(nr, surfaces.size());
 #pragma omp for schedule(dynamic, 256)
@@ -229,6 +230,7 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
                     out.push_back(pair_key(ra, region_at[j]));
                 });
         }
+        found[static_cast<std::size_t>(omp_get_thread_num())] = std::move(out);
     }
     const std::vector<std::uint64_t> pairs = merged_unique({&found});
     std::vector<std::uint32_t> parent(nr);

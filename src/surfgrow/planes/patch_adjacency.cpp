@@ -64,7 +64,8 @@ std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Aabb>& 
     constexpr std::size_t kBlock = 256;
 #pragma omp parallel num_threads(threads)
     {
-        std::vector<std::uint64_t>& out = found[static_cast<std::size_t>(omp_get_thread_num())];
+        // Filled here and moved: two threads' vectors side by side would share a cache line.
+        std::vector<std::uint64_t> out;
         Scratch scratch;
         std::vector<CubeIndex::Range> table;
 #pragma omp for schedule(dynamic, 1)
@@ -95,6 +96,7 @@ std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Aabb>& 
                     }
                 }
         }
+        found[static_cast<std::size_t>(omp_get_thread_num())] = std::move(out);
     }
     return found;
 }

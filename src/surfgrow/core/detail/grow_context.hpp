@@ -42,8 +42,9 @@ struct GrownSurface {
     Moments moments;  // about the home point, for normal pooling
 };
 
-/// Per-thread scratch reused across slabs: no allocation per home point.
-struct Scratch {
+/// Per-thread scratch reused across slabs: no allocation per home point. A cache line of its
+/// own: two threads' vectors side by side would share one, and every push_back would bounce it.
+struct alignas(64) Scratch {
     BulkVector<GrownSurface> grown;  // every slab this thread grew, one after another
     std::vector<std::uint32_t> order;
     std::vector<Range> table;
