@@ -13,12 +13,19 @@ using detail::reserve_bulk;
 
 namespace {
 
-// What the inner loop needs of a patch, in the pooling index's sorted order (contiguous reads).
-struct Candidate {
+// What the inner loop tests of a patch, in the pooling index's sorted order (contiguous reads):
+// one cache line. Its sums, read only for the coplanar ones, lie apart (SumsOf).
+struct alignas(64) Candidate {
     Vec3d normal;
-    Vec3d centroid;   // index-local
-    double sigma;     // sqrt(lambda_min)
-    Moments moments;  // about the index origin, so pooling is a plain sum
+    Vec3d centroid;  // index-local
+    double sigma;    // sqrt(lambda_min)
+    double n;        // its points
+};
+
+// The rest of a candidate's moments, about the index origin, so pooling is a plain sum.
+struct SumsOf {
+    Vec3d sum;
+    Mat3d sum_sq;
 };
 
 }  // namespace
@@ -46,11 +53,14 @@ std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const Po
     // Moments about the index origin: at metre scale in double the sums lose ~1e-14 m^2, far
     // below a patch's spread, and pooling needs no per-pair shift.
     BulkVector<Candidate> cand(index.size());
+    BulkVector<SumsOf> sums(index.size());
 #pragma omp parallel for num_threads(std::max(1, cfg.threads)) schedule(static)
     for (std::size_t s = 0; s < index.size(); ++s) {
         const PoolablePatch& p = patches[orig[s]];
+        const Moments m = moments_about(p.moments, p.home, index.origin());
         cand[s] = {p.normal, p.centroid - index.origin(), std::sqrt(std::max(p.lambda_min, 0.0)),
-                   moments_about(p.moments, p.home, index.origin())};
+                   m.n};
+        sums[s] = {m.sum, m.sum_sq};
     }
     const double cos_max = std::cos(cfg.max_angle);
     const auto r2 = static_cast<float>(cfg.radius * cfg.radius);
@@ -60,10 +70,10 @@ std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const Po
         for (std::uint32_t s = index.cube_begin(c); s < index.cube_end(c); ++s) {
             const Candidate& a = cand[s];
             const Vec3f q = index.local_point(s);
-            Moments pooled = a.moments;
+            Moments pooled{a.n, sums[s].sum, sums[s].sum_sq};
             int near = 0, coplanar = 0;
             // Points behind this patch's plane here, and behind the planes across it.
-            auto in_plane = static_cast<double>(a.moments.n);
+            auto in_plane = static_cast<double>(a.n);
             double elsewhere = 0;
             for (int r = 0; r < 9; ++r) {
                 const CubeIndex::Range run = table[9 * c + static_cast<std::size_t>(r)];
@@ -72,7 +82,7 @@ std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const Po
                     const Candidate& b = cand[t];
                     ++near;
                     if (std::abs(a.normal.dot(b.normal)) < cos_max) {
-                        elsewhere += static_cast<double>(b.moments.n);
+                        elsewhere += static_cast<double>(b.n);
                         continue;
                     }
                     const double offset = std::clamp(3.0 * std::max(a.sigma, b.sigma),
@@ -82,10 +92,10 @@ std::vector<Vec3d> pool_normals(std::span<const PoolablePatch> patches, const Po
                     if (std::abs(a.normal.dot(d)) > offset || std::abs(b.normal.dot(d)) > offset)
                         continue;
                     ++coplanar;
-                    in_plane += static_cast<double>(b.moments.n);
-                    pooled.n += b.moments.n;
-                    pooled.sum += b.moments.sum;
-                    pooled.sum_sq += b.moments.sum_sq;
+                    in_plane += static_cast<double>(b.n);
+                    pooled.n += b.n;
+                    pooled.sum += sums[t].sum;
+                    pooled.sum_sq += sums[t].sum_sq;
                 }
             }
             Vec3d n = fit_plane(pooled).normal;
