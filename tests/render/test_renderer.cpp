@@ -301,6 +301,51 @@ TEST(Renderer, AxisTriadAndScaleBarDrawInTheBand) {
     EXPECT_GT(ink, 50);
 }
 
+// The bar is as long as its length in the scene: measured against a disk of known diameter in a
+// front view (square to the view, so true), and its length a round number (1, 2 or 5 x 10^k).
+TEST(Renderer, ScaleBarIsTrueToTheScene) {
+    for (const double radius : {0.3, 1.0, 7.0}) {
+        Scene scene;
+        scene.disks.push_back(disk({0, 0, 0}, -Vec3d::UnitY(), radius, {90, 90, 200}));
+        RenderOptions o = bare();
+        o.width = 800;
+        o.height = 600;
+        o.scale_bar = true;
+        const Image img = render_scene(scene, o);
+        // The disk's widest row above the band (it is all the scene holds): its diameter.
+        const int band = overlay_layout(o, false).band_height;
+        int disk_px = 0;
+        for (int y = 0; y < img.height() - band; ++y) {
+            int run = 0;
+            for (int x = 0; x < img.width(); ++x) run += img.at(x, y) != kWhite;
+            disk_px = std::max(disk_px, run);
+        }
+        const double px_per_unit = disk_px / (2 * radius);
+        // The bar: the longest run of dark pixels in a row of the band (no font: o.units is empty
+        // and the label's digits are narrower than any bar).
+        int bar_px = 0;
+        for (int y = o.height - band; y < o.height; ++y) {
+            int run = 0;
+            for (int x = 0; x < img.width(); ++x) {
+                run = luminance(img.at(x, y)) < 0.5 ? run + 1 : 0;
+                bar_px = std::max(bar_px, run);
+            }
+        }
+        // The bar's length: the longest round number (1, 2 or 5 x 10^k) up to 12 % of the width.
+        const double most = 0.12 * o.width / px_per_unit;
+        const double decade = std::pow(10.0, std::floor(std::log10(most)));
+        const double expected = 5 * decade <= most   ? 5 * decade
+                                : 2 * decade <= most ? 2 * decade
+                                                     : decade;
+        // Within 3 pixels at each end of the bar and of the disk.
+        EXPECT_NEAR(bar_px / px_per_unit, expected, expected * (6.0 / bar_px + 6.0 / disk_px))
+            << "radius " << radius << ": bar " << bar_px << " px, disk " << disk_px << " px";
+        // A useful size: between 5 % and 12 % of the picture's width.
+        EXPECT_GE(bar_px, 0.05 * o.width - 3) << "radius " << radius;
+        EXPECT_LE(bar_px, 0.12 * o.width + 3) << "radius " << radius;
+    }
+}
+
 TEST(Renderer, EmptySceneIsBackgroundOnly) {
     const Scene empty;
     RenderOptions o = bare();
