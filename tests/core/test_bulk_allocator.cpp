@@ -28,6 +28,22 @@ TEST(BulkAllocator, SmallBlocksComeFromTheHeap) {
     EXPECT_EQ(v[99], 2.5);
 }
 
+// A type aligned to a cache line is, small or big (malloc alone gives 16 bytes).
+TEST(BulkAllocator, OverAlignedTypesAreAligned) {
+    struct alignas(64) Line {
+        double x[3];
+    };
+    for (const std::size_t n : {std::size_t{1}, std::size_t{3}, std::size_t{1000},
+                                (std::size_t{2} << 20) / sizeof(Line) + 5}) {
+        for (int k = 0; k < 4; ++k) {  // several blocks, so one cannot be aligned by chance
+            BulkVector<Line> v(n);
+            EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % alignof(Line), 0u) << n;
+            v[n - 1].x[2] = 1.5;
+            EXPECT_EQ(v[n - 1].x[2], 1.5);
+        }
+    }
+}
+
 TEST(BulkAllocator, ReleaseFreesTheStorageWhereAssigningEmptyDoesNot) {
     std::vector<int> a(1000, 1);
     a = {};

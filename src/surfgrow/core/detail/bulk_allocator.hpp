@@ -2,6 +2,7 @@
 // offers them.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -54,6 +55,10 @@ struct BulkAllocator {
         void* p = nullptr;
         if (bytes >= kHugePage) {
             p = map_huge_pages(rounded(bytes));
+        } else if constexpr (alignof(T) > alignof(std::max_align_t)) {
+            // A type aligned to a cache line: malloc gives only max_align_t's alignment.
+            const std::size_t a = alignof(T);
+            p = std::aligned_alloc(a, (std::max<std::size_t>(bytes, 1) + a - 1) / a * a);
         } else {
             p = std::malloc(bytes ? bytes : 1);
         }
