@@ -213,6 +213,27 @@ TEST(BuiltinSceneIBeam, TheFlangesInnerEdgesGetSurfacesFacingTheirWay) {
     }
 }
 
+TEST(BuiltinSceneIBeam, StripsAreTheSameForAnyThreadCount) {
+    // Strips grow slab by slab, the even slabs at once and then the odd ones: the scan's flange
+    // edges span every slab, so the strips of neighbouring slabs meet there.
+    const Attack& a = attack("ibeam-channel", 0.0);
+    GrowerConfig cfg;
+    cfg.threads = 1;
+    const GrowResult ref = grow_surfaces(a.single, cfg);
+    ASSERT_GT(ref.stats.strip_surfaces, 20u);  // 57
+    for (const int threads : {2, 3, 8}) {
+        cfg.threads = threads;
+        const GrowResult r = grow_surfaces(a.single, cfg);
+        EXPECT_EQ(r.stats.strip_surfaces, ref.stats.strip_surfaces) << threads << " threads";
+        ASSERT_EQ(r.labels, ref.labels) << threads << " threads";
+        ASSERT_EQ(r.surfaces.size(), ref.surfaces.size());
+        for (std::size_t k = 0; k < r.surfaces.size(); ++k) {
+            ASSERT_EQ(r.surfaces[k].home, ref.surfaces[k].home) << k;
+            ASSERT_EQ(r.surfaces[k].normal, ref.surfaces[k].normal) << k;
+        }
+    }
+}
+
 TEST(BuiltinSceneIBeam, ThePapersTestAloneMeetsTheWorkspaceBounds) {
     // Eq. (2) alone at mu = 12 mm, no adaptive radius: the workspace (within 1 m) is dense
     // enough; beyond it the registered share falls (reported by band, not asserted).

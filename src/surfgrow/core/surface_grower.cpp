@@ -21,6 +21,7 @@
 #include "surfgrow/core/detail/leftover_pass.hpp"
 #include "surfgrow/core/detail/neighbourhood.hpp"
 #include "surfgrow/core/detail/neighbourhood_fit.hpp"
+#include "surfgrow/core/detail/slab_colours.hpp"
 #include "surfgrow/core/detail/strip_growing.hpp"
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/grown_points.hpp"
@@ -309,27 +310,6 @@ NoiseProfile measure_noise(const GrowContext& ctx, int threads, NoiseProfile& la
     const double floor = ctx.config.mu / kNoiseFloorPerMu;
     layer_profile = NoiseProfile(kept_offsets, band, floor);
     return NoiseProfile(kept, band, floor);
-}
-
-/// Runs f(slab_id, thread_id) over the slabs of one colour (0: even, 1: odd) in parallel, the
-/// largest first (fewer threads idle at the colour's end). Slabs of one colour are independent,
-/// so the order changes nothing in the result.
-template <class F>
-void for_each_slab_of_colour(const CubeIndex& index, std::span<const Slab> slabs, int colour,
-                             int threads, F&& f) {
-    std::vector<std::uint32_t> ids;
-    for (std::size_t s = static_cast<std::size_t>(colour); s < slabs.size(); s += 2)
-        ids.push_back(static_cast<std::uint32_t>(s));
-    auto points = [&](std::uint32_t s) {
-        return index.cube_begin(slabs[s].cube_end) - index.cube_begin(slabs[s].cube_begin);
-    };
-    std::stable_sort(ids.begin(), ids.end(),
-                     [&](std::uint32_t a, std::uint32_t b) { return points(a) > points(b); });
-    const auto count = static_cast<std::int64_t>(ids.size());
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-    for (std::int64_t k = 0; k < count; ++k) {
-        f(std::size_t{ids[static_cast<std::size_t>(k)]}, omp_get_thread_num());
-    }
 }
 
 Orientation choose_orientation(const CloudView& cloud, const GrowerConfig& cfg, const Aabb& box) {
@@ -679,7 +659,8 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
     if (cfg.attach_leftovers && surface_count > 0)
         attach_leftovers(late, slabs, result.surfaces, tolerance, threads, labels);
     // --- Stage 3b: strips narrower than a ball, from the points no surface fits (`strips`: where).
-    if (strips) st.strip_surfaces = grow_strips(late, result.surfaces, home_of, tolerance);
+    if (strips)
+        st.strip_surfaces = grow_strips(late, slabs, threads, result.surfaces, home_of, tolerance);
     // ... and a strip's plane reaches beyond its ball: the points still left go to the strip
     // they fit best, by the leftover pass's rules (no other surface fits them: the pass before).
     if (st.strip_surfaces > 0)

@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <utility>
 
 #include "surfgrow/core/detail/neighbourhood_fit.hpp"
+#include "surfgrow/core/detail/parallel_errors.hpp"
+#include "surfgrow/core/detail/slab_colours.hpp"
 
 namespace surfgrow::detail {
 
@@ -14,8 +18,9 @@ namespace {
 constexpr double kEnoughPoints = 10.0;
 }  // namespace
 
-std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces,
-                          std::vector<std::uint32_t>& home_of, std::vector<double>& tolerance) {
+std::uint64_t grow_strips(const GrowContext& ctx, std::span<const Slab> slabs, int threads,
+                          std::vector<Surface>& surfaces, std::vector<std::uint32_t>& home_of,
+                          std::vector<double>& tolerance) {
     const CubeIndex& index = ctx.index;
     const GrowerConfig& cfg = ctx.config;
     if (cfg.plane_test != PlaneTest::kDisk || !ctx.noise.known()) return 0;
@@ -75,111 +80,160 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces
     std::vector<std::int64_t> ring_of(radii.size());
     for (std::size_t b = 0; b < radii.size(); ++b)
         ring_of[b] = static_cast<std::int64_t>(std::ceil(radii[b] / cell - 1e-9));
-    std::vector<std::vector<std::uint32_t>> in_ball(radii.size());  // per ball, its new points
-    std::vector<std::uint32_t> members;
-    std::uint64_t grown = 0;
+    // What one slab grows: its strips in home order, and each member point with its strip's
+    // number in that list. Its members hold kTaken meanwhile: taken, so later homes skip them.
+    struct SlabStrips {
+        std::vector<Surface> surfaces;
+        std::vector<std::uint32_t> home_of;
+        std::vector<double> tolerance;
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> members;  // (point, strip)
+    };
+    constexpr std::int32_t kTaken = std::numeric_limits<std::int32_t>::max();
+    std::vector<SlabStrips> grown_in(slabs.size());
+    // Per thread: per ball, its new points; the members gathered so far.
+    struct StripScratch {
+        std::vector<std::vector<std::uint32_t>> in_ball;
+        std::vector<std::uint32_t> members;
+    };
+    std::vector<StripScratch> scratch(static_cast<std::size_t>(std::max(threads, 1)));
+    for (StripScratch& sc : scratch) sc.in_ball.resize(radii.size());
     // A home whose balls hold no strip leaves its mu-neighbours untried as homes: their balls
-    // are nearly its own (without this, a cluttered room's leftovers cost seconds).
-    std::vector<bool> tried(index.size(), false);
-    // Homes in index order: every point still unregistered (a leftover no strip took yet).
-    for (std::uint32_t home = 0; home < static_cast<std::uint32_t>(index.size()); ++home) {
-        if (labels[home] >= 0 || tried[home]) continue;  // registered, or near a home that failed
-        const Vec3f h = index.local_point(home);
-        const Cell c = cell_of(h);
-        for (auto& list : in_ball) list.clear();
-        // The leftovers in cells (x, y, z0 .. z1) into the balls that hold them (z may wrap at
-        // 2^21: then two ranges of keys).
-        auto gather = [&](std::int64_t x, std::int64_t y, std::int64_t z0, std::int64_t z1) {
-            auto range = [&](std::uint64_t k0, std::uint64_t k1) {
-                auto it = std::lower_bound(left.begin(), left.end(), Keyed{k0, 0});
-                for (; it != left.end() && it->key <= k1; ++it) {
-                    // The distance first: a point beyond the largest ball is not this home's
-                    // to read.
-                    const std::size_t ball =
-                        ball_of((index.local_point(it->point) - h).squaredNorm());
-                    if (ball < radii.size() && labels[it->point] < 0)
-                        in_ball[ball].push_back(it->point);
+    // are nearly its own (without this, a cluttered room's leftovers cost seconds). Bytes, not
+    // bits: slabs of one colour mark their own points at once.
+    std::vector<std::uint8_t> tried(index.size(), 0);
+    auto grow_slab_strips = [&](const Slab& slab, StripScratch& sc, SlabStrips& out) {
+        auto& in_ball = sc.in_ball;
+        auto& members = sc.members;
+        const auto first = static_cast<std::uint32_t>(index.cube_begin(slab.cube_begin));
+        const auto last = static_cast<std::uint32_t>(index.cube_begin(slab.cube_end));
+        // Homes in index order: every point still unregistered (a leftover no strip took yet).
+        for (std::uint32_t home = first; home < last; ++home) {
+            if (labels[home] >= 0 || tried[home])
+                continue;  // registered, or near a home that failed
+            const Vec3f h = index.local_point(home);
+            const Cell c = cell_of(h);
+            for (auto& list : in_ball) list.clear();
+            // The leftovers in cells (x, y, z0 .. z1) into the balls that hold them (z may wrap at
+            // 2^21: then two ranges of keys).
+            auto gather = [&](std::int64_t x, std::int64_t y, std::int64_t z0, std::int64_t z1) {
+                auto range = [&](std::uint64_t k0, std::uint64_t k1) {
+                    auto it = std::lower_bound(left.begin(), left.end(), Keyed{k0, 0});
+                    for (; it != left.end() && it->key <= k1; ++it) {
+                        // The distance first: a point beyond the largest ball is not this home's
+                        // to read.
+                        const std::size_t ball =
+                            ball_of((index.local_point(it->point) - h).squaredNorm());
+                        if (ball < radii.size() && labels[it->point] < 0)
+                            in_ball[ball].push_back(it->point);
+                    }
+                };
+                const std::uint64_t k0 = key_of(x, y, z0), k1 = key_of(x, y, z1);
+                if (k0 <= k1) {
+                    range(k0, k1);
+                } else {
+                    range(k0, key_of(x, y, kMask));
+                    range(key_of(x, y, 0), k1);
                 }
             };
-            const std::uint64_t k0 = key_of(x, y, z0), k1 = key_of(x, y, z1);
-            if (k0 <= k1) {
-                range(k0, k1);
-            } else {
-                range(k0, key_of(x, y, kMask));
-                range(key_of(x, y, 0), k1);
-            }
-        };
-        std::int64_t gathered = -1;  // rings gathered so far
-        // Ring R of cells around c: the columns new at R whole, the inner columns' two new ends.
-        auto gather_ring = [&](std::int64_t r) {
-            if (r == 0) {
-                gather(c[0], c[1], c[2], c[2]);
-                return;
-            }
-            for (std::int64_t dx = -r; dx <= r; ++dx)
-                for (std::int64_t dy = -r; dy <= r; ++dy) {
-                    if (std::max(std::abs(dx), std::abs(dy)) == r) {
-                        gather(c[0] + dx, c[1] + dy, c[2] - r, c[2] + r);
-                    } else {
-                        gather(c[0] + dx, c[1] + dy, c[2] - r, c[2] - r);
-                        gather(c[0] + dx, c[1] + dy, c[2] + r, c[2] + r);
-                    }
+            std::int64_t gathered = -1;  // rings gathered so far
+            // Ring R of cells around c: the columns new at R whole, the inner columns' two new
+            // ends.
+            auto gather_ring = [&](std::int64_t r) {
+                if (r == 0) {
+                    gather(c[0], c[1], c[2], c[2]);
+                    return;
                 }
-        };
-        bool made = false;
-        const Vec3d towards = ctx.sight.towards(home, h);
-        const double range = ctx.sight.origins.empty() ? 0.0 : towards.norm();
-        const Vec3d sight = ctx.sight.named ? towards : Vec3d::Zero();
-        const double sigma = ctx.noise.sigma(range);
-        const double max_var = cfg.thickness_sigmas * cfg.thickness_sigmas * sigma * sigma;
-        Moments m;
-        members.clear();
-        for (std::size_t ball = 0; ball < radii.size(); ++ball) {
-            const double radius = radii[ball];
-            while (gathered < ring_of[ball]) gather_ring(++gathered);
-            for (const std::uint32_t q : in_ball[ball]) {
-                m.add((index.local_point(q) - h).cast<double>());
-                members.push_back(q);
+                for (std::int64_t dx = -r; dx <= r; ++dx)
+                    for (std::int64_t dy = -r; dy <= r; ++dy) {
+                        if (std::max(std::abs(dx), std::abs(dy)) == r) {
+                            gather(c[0] + dx, c[1] + dy, c[2] - r, c[2] + r);
+                        } else {
+                            gather(c[0] + dx, c[1] + dy, c[2] - r, c[2] - r);
+                            gather(c[0] + dx, c[1] + dy, c[2] + r, c[2] + r);
+                        }
+                    }
+            };
+            bool made = false;
+            const Vec3d towards = ctx.sight.towards(home, h);
+            const double range = ctx.sight.origins.empty() ? 0.0 : towards.norm();
+            const Vec3d sight = ctx.sight.named ? towards : Vec3d::Zero();
+            const double sigma = ctx.noise.sigma(range);
+            const double max_var = cfg.thickness_sigmas * cfg.thickness_sigmas * sigma * sigma;
+            Moments m;
+            members.clear();
+            for (std::size_t ball = 0; ball < radii.size(); ++ball) {
+                const double radius = radii[ball];
+                while (gathered < ring_of[ball]) gather_ring(++gathered);
+                for (const std::uint32_t q : in_ball[ball]) {
+                    m.add((index.local_point(q) - h).cast<double>());
+                    members.push_back(q);
+                }
+                if (m.n < cfg.min_pts) continue;  // too few yet: a larger ball
+                const PlaneFit fit = fit_plane(m);
+                const PlaneVerdict verdict = judge_strip(disk, strip, fit.eigenvalues, m.n,
+                                                         fit.normal, radius, sigma, max_var, sight);
+                // A larger ball may hold more of a strip; not of one that is narrow with this many
+                // points already (a line or a blob only lengthens).
+                if (verdict == PlaneVerdict::kNarrow && m.n < kEnoughPoints * cfg.min_pts) continue;
+                if (verdict != PlaneVerdict::kPlane) break;  // thick or edge-on: no strip here
+                Neighbourhood nb;
+                nb.radius = radius;
+                nb.range = ctx.sight.origins.empty() ? -1.0 : range;
+                nb.fit = fit;
+                const double tol = tolerance_of(ctx, nb);
+                const Vec3f normal = fit.normal.cast<float>();
+                const Vec3f centre = h + fit.centroid.cast<float>();
+                const auto sid = static_cast<std::uint32_t>(out.surfaces.size());
+                // Its members: the leftovers within its tolerance of its plane. (Taking points from
+                // other surfaces where they fit the strip better was tried: it raised the channel's
+                // p95 from 1.4 to 2.2 degrees, the strips' planes leaning into the faces beside
+                // them.)
+                for (const std::uint32_t j : members)
+                    if (static_cast<double>(std::abs(normal.dot(index.local_point(j) - centre))) <=
+                        tol) {
+                        labels[j] = kTaken;
+                        out.members.emplace_back(j, sid);
+                    }
+                Surface& s = out.surfaces.emplace_back();
+                s.home = index.world_point(home);
+                s.centroid = s.home + fit.centroid;
+                s.normal = fit.normal;
+                s.eigenvalues = fit.eigenvalues;
+                s.radius = radius;
+                s.neighbours = static_cast<std::uint32_t>(m.n);
+                s.tolerance = tol;
+                out.home_of.push_back(home);
+                out.tolerance.push_back(tol);
+                made = true;
+                break;
             }
-            if (m.n < cfg.min_pts) continue;  // too few yet: a larger ball
-            const PlaneFit fit = fit_plane(m);
-            const PlaneVerdict verdict = judge_strip(disk, strip, fit.eigenvalues, m.n, fit.normal,
-                                                     radius, sigma, max_var, sight);
-            // A larger ball may hold more of a strip; not of one that is narrow with this many
-            // points already (a line or a blob only lengthens).
-            if (verdict == PlaneVerdict::kNarrow && m.n < kEnoughPoints * cfg.min_pts) continue;
-            if (verdict != PlaneVerdict::kPlane) break;  // thick or edge-on: no strip here
-            Neighbourhood nb;
-            nb.radius = radius;
-            nb.range = ctx.sight.origins.empty() ? -1.0 : range;
-            nb.fit = fit;
-            const double tol = tolerance_of(ctx, nb);
-            const Vec3f normal = fit.normal.cast<float>();
-            const Vec3f centre = h + fit.centroid.cast<float>();
-            const auto sid = static_cast<std::int32_t>(surfaces.size());
-            // Its members: the leftovers within its tolerance of its plane. (Taking points from
-            // other surfaces where they fit the strip better was tried: it raised the channel's
-            // p95 from 1.4 to 2.2 degrees, the strips' planes leaning into the faces beside them.)
-            for (const std::uint32_t j : members)
-                if (static_cast<double>(std::abs(normal.dot(index.local_point(j) - centre))) <= tol)
-                    labels[j] = sid;
-            Surface& s = surfaces.emplace_back();
-            s.home = index.world_point(home);
-            s.centroid = s.home + fit.centroid;
-            s.normal = fit.normal;
-            s.eigenvalues = fit.eigenvalues;
-            s.radius = radius;
-            s.neighbours = static_cast<std::uint32_t>(m.n);
-            s.tolerance = tol;
-            home_of.push_back(home);
-            tolerance.push_back(tol);
-            ++grown;
-            made = true;
-            break;
+            if (made) continue;
+            for (const std::uint32_t q : in_ball[0]) tried[q] = true;
         }
-        if (made) continue;
-        for (const std::uint32_t q : in_ball[0]) tried[q] = true;
-    }
+    };
+    // Slab by slab, even ones then odd ones as in growing: a home's balls reach at most one slab
+    // either side, so the slabs of one colour read and write disjoint points. The strips are
+    // numbered in slab order, even slabs first: the same result for any thread count.
+    ParallelErrors errors;
+    for (int colour = 0; colour < 2; ++colour)
+        for_each_slab_of_colour(index, slabs, colour, threads, [&](std::size_t s, int t) {
+            errors.run(s, [&] {
+                grow_slab_strips(slabs[s], scratch[static_cast<std::size_t>(t)], grown_in[s]);
+            });
+        });
+    errors.rethrow();
+    std::uint64_t grown = 0;
+    for (int colour = 0; colour < 2; ++colour)
+        for (std::size_t s = static_cast<std::size_t>(colour); s < slabs.size(); s += 2) {
+            SlabStrips& g = grown_in[s];
+            const auto base = static_cast<std::int32_t>(surfaces.size());
+            for (const auto& [point, number] : g.members)
+                labels[point] = base + static_cast<std::int32_t>(number);
+            surfaces.insert(surfaces.end(), g.surfaces.begin(), g.surfaces.end());
+            home_of.insert(home_of.end(), g.home_of.begin(), g.home_of.end());
+            tolerance.insert(tolerance.end(), g.tolerance.begin(), g.tolerance.end());
+            grown += g.surfaces.size();
+        }
     return grown;
 }
 

@@ -18,9 +18,12 @@ namespace surfgrow::detail {
 /// the strip test (judge_strip); a strip takes the unregistered points within its tolerance of its
 /// plane. A home that grows no strip leaves the leftovers within mu of it untried as homes.
 /// Appends the strips to `surfaces`, `home_of` and `tolerance` and labels their points in
-/// `ctx.labels`; returns how many it grew. Serial and in index order: the same result for any
-/// thread count. The grower calls it for clouds of one scan only (see surface_grower.cpp).
-std::uint64_t grow_strips(const GrowContext& ctx, std::vector<Surface>& surfaces,
-                          std::vector<std::uint32_t>& home_of, std::vector<double>& tolerance);
+/// `ctx.labels`; returns how many it grew. Homes in index order within each of the grower's
+/// `slabs`, the even slabs in parallel and then the odd ones (a ball never reaches past the next
+/// slab); strips numbered in slab order, even slabs first: the same result for any thread count.
+/// The grower calls it for clouds of one scan only (see surface_grower.cpp).
+std::uint64_t grow_strips(const GrowContext& ctx, std::span<const Slab> slabs, int threads,
+                          std::vector<Surface>& surfaces, std::vector<std::uint32_t>& home_of,
+                          std::vector<double>& tolerance);
 
 }  // namespace surfgrow::detail
