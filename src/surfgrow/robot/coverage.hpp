@@ -96,7 +96,7 @@ struct CoveragePlan {
 ///
 /// Path: boustrophedon within each plane (rows in v order, alternating direction along u);
 /// planes in a short order (greedy nearest neighbour, then 2-opt with each plane's sweep run
-/// either way), distances between tool positions.
+/// either way, up to a budget of tested moves), distances between tool positions.
 ///
 /// Pose: the tool trails its goal by `tilt` from the normal, so the jet leans forward into the
 /// sweep direction: tool_axis = -(cos(tilt) n - sin(tilt) direction).
