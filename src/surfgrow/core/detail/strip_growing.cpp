@@ -85,7 +85,6 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::span<const Slab> slabs, i
     struct SlabStrips {
         std::vector<Surface> surfaces;
         std::vector<std::uint32_t> home_of;
-        std::vector<double> tolerance;
         std::vector<std::pair<std::uint32_t, std::uint32_t>> members;  // (point, strip)
     };
     constexpr std::int32_t kTaken = std::numeric_limits<std::int32_t>::max();
@@ -203,7 +202,6 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::span<const Slab> slabs, i
                 s.neighbours = static_cast<std::uint32_t>(m.n);
                 s.tolerance = tol;
                 out.home_of.push_back(home);
-                out.tolerance.push_back(tol);
                 made = true;
                 break;
             }
@@ -231,7 +229,8 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::span<const Slab> slabs, i
                 labels[point] = base + static_cast<std::int32_t>(number);
             surfaces.insert(surfaces.end(), g.surfaces.begin(), g.surfaces.end());
             home_of.insert(home_of.end(), g.home_of.begin(), g.home_of.end());
-            tolerance.insert(tolerance.end(), g.tolerance.begin(), g.tolerance.end());
+            for (const Surface& strip_surface : g.surfaces)
+                tolerance.push_back(strip_surface.tolerance);
             grown += g.surfaces.size();
         }
     return grown;
