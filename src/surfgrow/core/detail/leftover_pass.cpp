@@ -9,8 +9,8 @@
 #include <utility>
 
 #include "surfgrow/core/detail/parallel_errors.hpp"
-#include "surfgrow/core/moments.hpp"
-#include "surfgrow/core/symmetric_eigen.hpp"
+#include "surfgrow/core/plane_fit.hpp"
+#include "surfgrow/core/plane_test.hpp"
 
 namespace surfgrow::detail {
 
@@ -28,11 +28,11 @@ constexpr double kLayerSigmas = 4.0;
 // ... if at least this many unregistered points of its own scan around it make that layer,
 constexpr int kLayerMinPoints = 4;
 // ... and a layer whose own plane the noise leaves fixed within kLayerNormalError (the standard
-// error of its normal about its narrow axis, as the strip test's) lies within kLayerMaxTiltDeg of
-// the surface's plane: the wrong case is a narrow face's band across the plane, 90 degrees off;
-// a pipe's layer beside a patch of it leans by the curvature between them.
-constexpr double kLayerMaxTiltDeg = 45.0;
-constexpr double kLayerNormalError = 0.176;  // tan 10 degrees
+// error of its normal about its narrow axis, as the strip test's) lies within 45 degrees of the
+// surface's plane (kLayerMaxTiltCos): the wrong case is a narrow face's band across the plane, 90
+// degrees off; a pipe's layer beside a patch of it leans by the curvature between them.
+constexpr double kLayerMaxTiltCos = 0.7071067811865476;  // cos 45 degrees
+constexpr double kLayerNormalError = 0.176;              // tan 10 degrees
 // The wider searches double their radius at most this many times (the adaptive radius's 64 mu).
 constexpr std::size_t kFarLevels = 7;
 
@@ -48,7 +48,7 @@ struct Candidate {
 /// this scan's points lie beside it, farther than the noise within a layer. `layer` holds the
 /// unregistered points of the point's own scan around it: it must be as thin as the noise, parallel
 /// to the surface (its distances to the plane agree; where it spans two dimensions, its own plane
-/// within kLayerMaxTiltDeg: a narrow face's leftovers beside the next face are a thin band across
+/// within 45 degrees: a narrow face's leftovers beside the next face are a thin band across
 /// its plane, not a layer of it), and offset from it by at most kLayerSigmas of the measured layer
 /// offsets; the point must lie within the surface's tolerance of the layer's median.
 std::int32_t attach_layer(const GrowContext& ctx, const Vec3d& ray,
@@ -61,23 +61,22 @@ std::int32_t attach_layer(const GrowContext& ctx, const Vec3d& ray,
     if (!(range > 0)) return -1;  // a point on its sensor has no ray
     const double noise = ctx.noise.sigma(range);
     const double max_spread = ctx.config.thickness_sigmas * noise;
-    // The layer's own plane, where it has one: not a line (the real-scan tests' 5 % rule), and
-    // its normal's standard error sigma / sqrt(n lambda_mid) within kLayerNormalError.
+    // The layer's own plane, where it has one: not a line (the strip test's rule), and its
+    // normal's standard error sigma / sqrt(n lambda_mid) within kLayerNormalError.
     Moments about_first;
     for (const Vec3f& q : layer) about_first.add((q - layer[0]).cast<double>());
-    const CentredMoments lm = CentredMoments::of(about_first, Vec3d::Zero());
-    const SymmetricEigen3 le = symmetric_eigen(lm.scatter / lm.n);
+    const PlaneFit own = fit_plane(about_first);
+    const Vec3d& e = own.eigenvalues;
     const bool has_plane =
-        le.values[1] > 0 && le.values[1] >= 0.05 * le.values[2] &&
-        noise * noise <= kLayerNormalError * kLayerNormalError * lm.n * le.values[1];
-    const double min_cos = std::cos(kLayerMaxTiltDeg * M_PI / 180.0);
+        e[1] > 0 && e[1] >= StripTest{}.min_line_ratio * e[2] &&
+        noise * noise <= kLayerNormalError * kLayerNormalError * about_first.n * e[1];
     std::int32_t best = -1;
     double best_fit = 0;
     for (const Candidate& cand : candidates) {
         const auto sid = static_cast<std::size_t>(cand.surface);
         const Surface& surf = surfaces[sid];
         const Vec3f n = surf.normal.cast<float>();
-        if (has_plane && std::abs(surf.normal.dot(le.smallest_vector)) < min_cos) continue;
+        if (has_plane && std::abs(surf.normal.dot(own.normal)) < kLayerMaxTiltCos) continue;
         const Vec3f c = index.to_local(surf.centroid);
         const double max_offset = kLayerSigmas * ctx.layers.sigma(range) *
                                   std::max(std::abs(surf.normal.dot(ray)) / range, kMinLayerCos);
