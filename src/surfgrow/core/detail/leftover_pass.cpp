@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <utility>
 
+#include "surfgrow/core/detail/cube_surfaces.hpp"
 #include "surfgrow/core/detail/parallel_errors.hpp"
 #include "surfgrow/core/plane_fit.hpp"
 #include "surfgrow/core/plane_test.hpp"
@@ -96,77 +97,6 @@ std::int32_t attach_layer(const GrowContext& ctx, const Vec3d& ray,
         }
     }
     return best;
-}
-
-/// Per cube, the distinct surfaces its points were grown into (sorted). A leftover's search reads
-/// the surfaces around it from these lists rather than every point around it (a dense scan holds
-/// thousands of points within mu of a leftover, on a handful of surfaces), and scans points only
-/// to confirm that a surface it would take has a member within reach.
-struct CubeSurfaces {
-    std::vector<std::uint32_t> start;  // cube_count() + 1 entries
-    std::vector<std::int32_t> ids;
-
-    [[nodiscard]] std::span<const std::int32_t> of(std::size_t c) const {
-        return {ids.data() + start[c], ids.data() + start[c + 1]};
-    }
-    [[nodiscard]] bool holds(std::size_t c, std::int32_t sid) const {
-        const auto list = of(c);
-        return std::binary_search(list.begin(), list.end(), sid);
-    }
-};
-
-CubeSurfaces cube_surfaces(const CubeIndex& index, std::span<const std::int32_t> labels,
-                           std::int32_t first_surface, int threads) {
-    const std::size_t cubes = index.cube_count();
-    CubeSurfaces cs;
-    cs.start.assign(cubes + 1, 0);
-    // Chunks of cubes, each listing its own; concatenated in cube order afterwards.
-    const std::size_t chunks = std::min<std::size_t>(cubes, 64 * static_cast<std::size_t>(threads));
-    std::vector<std::vector<std::int32_t>> part(chunks);
-    ParallelErrors errors;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-    for (std::size_t k = 0; k < chunks; ++k) {
-        errors.run(k, [&] {
-            // Locals, not the captures: the compiler reloads what a push_back might alias.
-            const std::int32_t* const lab = labels.data();
-            const std::int32_t lowest = first_surface;
-            // Filled here and moved: neighbouring chunks' vectors share a cache line (written in
-            // place, two threads were no faster than one).
-            std::vector<std::int32_t> out;
-            for (std::size_t c = k * cubes / chunks; c < (k + 1) * cubes / chunks; ++c) {
-                // A cube holds a few surfaces: each new one is inserted in order in place (no
-                // sort call per cube, which cost more than the scan); past kSorted, sorted after.
-                constexpr std::size_t kSorted = 16;
-                const std::size_t first = out.size();
-                std::int32_t last = -1;
-                const std::uint32_t end = index.cube_end(c);
-                for (std::uint32_t i = index.cube_begin(c); i < end; ++i) {
-                    const std::int32_t l = lab[i];
-                    if (l < lowest || l == last) continue;
-                    last = l;
-                    std::size_t at = out.size();
-                    if (at - first < kSorted) {
-                        while (at > first && out[at - 1] > l) --at;
-                        if (at > first && out[at - 1] == l) continue;
-                    }
-                    out.insert(out.begin() + static_cast<std::ptrdiff_t>(at), l);
-                }
-                if (out.size() - first > kSorted) {
-                    std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
-                    out.erase(
-                        std::unique(out.begin() + static_cast<std::ptrdiff_t>(first), out.end()),
-                        out.end());
-                }
-                cs.start[c + 1] = static_cast<std::uint32_t>(out.size() - first);
-            }
-            part[k] = std::move(out);
-        });
-    }
-    errors.rethrow();
-    for (std::size_t c = 0; c < cubes; ++c) cs.start[c + 1] += cs.start[c];
-    cs.ids.reserve(cs.start[cubes]);
-    for (const auto& p : part) cs.ids.insert(cs.ids.end(), p.begin(), p.end());
-    return cs;
 }
 
 /// A cube within a search's reach and the low corner of its box (local frame).
