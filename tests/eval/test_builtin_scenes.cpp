@@ -103,10 +103,11 @@ constexpr double kMaxShareOver45 = 0.005;  // points more than 45 degrees off
 constexpr double kMinFacesDetected = 0.9;  // SegComp correct detection, T = 0.8
 
 // Where the defaults do not reach those bounds yet, the bound this scene is held to instead (the
-// gaps are in docs/algorithm.md, "What the disk test does not reach yet"): on fused scans, the
-// I-beam channel's 12-30 mm strips (stiffener ends, flange edges), narrower than mu resolves,
-// whose points the next face's surfaces take, and the pipes', whose cylinders meet the wall and
-// the floor in such strips; the channel's single scans' 1.5-2 m band, where the top flanges'
+// gaps are in docs/algorithm.md, "What the disk test does not reach yet"): on the pipes' fused
+// scans, mixed-pixel veils between a pipe and the wall behind it and the strips where the
+// cylinders meet the wall and the floor (the channel's fused scans meet the bound on the tests'
+// pose draw since the edge pass; over other draws, see ChannelPoseDraws); the channel's single
+// scans' 1.5-2 m band, where the top flanges'
 // inner edges end: there a strip holds too few points to fix its normal within 4 degrees before
 // its ball reads as a line (97.9-98.4 %); and narrow faces (the flange edges, a bolt head, the
 // corridor's 10 mm shelf edge, the pipes' valve top in the plane of a pipe's crown), whose planes
@@ -118,10 +119,10 @@ struct Held {
     double single_band = kMinRegistered;  // per range band, one scan
 };
 Held held_to(const std::string& scene) {
-    // The channel's fused > 45 degree share moves with the draw of the pose errors (0.42-0.74 %
-    // for robustness_study --pose-seed 1..7) and with the platform's libm (aarch64: +0.3 %).
-    if (scene == "ibeam-channel") return {0.009, 0.75, 0.975};
-    if (scene == "pipes") return {0.0095, 0.8};
+    // The pipes' fused > 45 degree share: 0.38-0.59 % on the tests' draw (0.82 % before the
+    // edge pass). Platforms' libm moves these shares too (aarch64 once: +0.3 %).
+    if (scene == "ibeam-channel") return {kMaxShareOver45, 0.75, 0.975};
+    if (scene == "pipes") return {0.0065, 0.8};
     if (scene == "corridor") return {kMaxShareOver45, 0.8};
     return {};
 }
@@ -181,14 +182,16 @@ INSTANTIATE_TEST_SUITE_P(Scenes, AttackScene,
 // One test per offset: each simulates its three scans once (a whole test ran past ctest's 900 s
 // per test under qemu-aarch64).
 class ChannelPoseDraws : public ::testing::TestWithParam<double> {};
+constexpr double kDrawsMaxShareOver45 = 0.006;
 
 TEST_P(ChannelPoseDraws, FusedScansRegisterEveryRangeBandWhateverThePoseErrorsDraw) {
     // Each face lies a little off in each scan (its range bias there, the pose error), and the
     // leftover pass must take a layer however far the largest of those offsets falls: on pose
     // draw 5 one scan's layer of a top flange's underside lies 9 mm off the others' (3.9 sigmas
     // of the measured offsets), and when 3 sigmas were the limit its 1.5-2 m band kept 97.8 %.
-    // Draws 1-5 (the tests above use draw 7); the > 45 degree share must stay within the
-    // channel's bound meanwhile.
+    // Draws 1-5 (the tests above use draw 7); the > 45 degree share must stay within its bound
+    // meanwhile: 0.34-0.51 % over draws 1-7 since the edge pass (0.42-0.68 % before), so 0.6 %
+    // here, where the tests' draw meets the 0.5 %.
     SURFGROW_SKIP_UNDER_SANITIZERS();
     const std::string name = "ibeam-channel";
     const double offset = GetParam();
@@ -215,7 +218,7 @@ TEST_P(ChannelPoseDraws, FusedScansRegisterEveryRangeBandWhateverThePoseErrorsDr
             EXPECT_GE(b.planar.fraction(), kMinRegistered)
                 << "draw " << draw << ", " << b.from_m << "-" << b.to_m << " m";
         }
-        EXPECT_LE(e.normal_over_45, held_to(name).fused_over_45) << "draw " << draw;
+        EXPECT_LE(e.normal_over_45, kDrawsMaxShareOver45) << "draw " << draw;
     }
 }
 
@@ -278,6 +281,26 @@ TEST(BuiltinSceneIBeam, StripsAreTheSameForAnyThreadCount) {
             ASSERT_EQ(r.surfaces[k].normal, ref.surfaces[k].normal) << k;
         }
     }
+}
+
+TEST(BuiltinSceneIBeam, TheEdgePassMovesOnlyEdgePointsTheSameForAnyThreadCount) {
+    // The fused scans' edge pass (docs/algorithm.md): it moves the points along the edges, a few
+    // thousand of 700,000, never the points between coplanar surfaces (without that rule it moved
+    // two thirds of the cloud); its moves are decided on one snapshot of the labels.
+    SURFGROW_SKIP_UNDER_SANITIZERS();
+    const Attack& a = attack("ibeam-channel", 0.0);
+    GrowerConfig cfg;
+    cfg.threads = 1;
+    const GrowResult ref = grow_surfaces(a.fused, cfg);
+    std::printf("edge pass: %llu of %llu points moved\n",
+                static_cast<unsigned long long>(ref.stats.edge_moves),
+                static_cast<unsigned long long>(ref.stats.valid_points));
+    EXPECT_GT(ref.stats.edge_moves, 500u);
+    EXPECT_LT(double(ref.stats.edge_moves), 0.01 * double(ref.stats.valid_points));
+    cfg.threads = 3;
+    const GrowResult r = grow_surfaces(a.fused, cfg);
+    EXPECT_EQ(r.stats.edge_moves, ref.stats.edge_moves);
+    ASSERT_EQ(r.labels, ref.labels);
 }
 
 TEST(BuiltinSceneIBeam, ThePapersTestAloneMeetsTheWorkspaceBounds) {

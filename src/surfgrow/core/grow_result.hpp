@@ -51,6 +51,7 @@ struct GrowStats {
     std::uint64_t dropped_surfaces = 0;        ///< grown, then dropped: emptied or lone (kDisk)
     std::uint64_t lone_surfaces = 0;           ///< of those, in no plane with any neighbour
     std::uint64_t strip_surfaces = 0;  ///< grown by the strip test from the leftovers (kDisk)
+    std::uint64_t edge_moves = 0;      ///< points the edge pass moved across an edge (fused, kDisk)
     std::uint64_t noise_points = 0;    ///< valid points left unregistered
     OrientationSource orientation = OrientationSource::kUp;
     /// kFrameOrigin: registered points on surfaces the guessed origin sees beyond the grazing

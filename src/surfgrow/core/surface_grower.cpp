@@ -16,6 +16,7 @@
 
 #include "surfgrow/core/cube_index.hpp"
 #include "surfgrow/core/detail/bulk_allocator.hpp"
+#include "surfgrow/core/detail/edge_pass.hpp"
 #include "surfgrow/core/detail/grow_context.hpp"
 #include "surfgrow/core/detail/grow_statistics.hpp"
 #include "surfgrow/core/detail/leftover_pass.hpp"
@@ -666,6 +667,9 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
     if (st.strip_surfaces > 0)
         attach_leftovers(late, slabs, result.surfaces, tolerance, threads, labels,
                          static_cast<std::int32_t>(result.surfaces.size() - st.strip_surfaces));
+    // --- Stage 3c (fused clouds): points along edges to the face their own scan's layer fits.
+    if (cfg.attach_leftovers && cfg.plane_test == PlaneTest::kDisk && surface_count > 0)
+        st.edge_moves = reassign_at_edges(late, slabs, result.surfaces, tolerance, threads, labels);
     st.seconds.attach = stage.lap();
     report("attach", 1.0);
 

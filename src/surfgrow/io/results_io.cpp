@@ -161,6 +161,7 @@ nlohmann::json summary_json(const GrowStats& s) {
         {"dropped_surfaces", s.dropped_surfaces},
         {"lone_surfaces", s.lone_surfaces},
         {"strip_surfaces", s.strip_surfaces},
+        {"edge_moves", s.edge_moves},
         {"adapted_surfaces", s.adapted_surfaces},
         {"noise_sigma_by_range", {{"band", s.noise_band}, {"sigma", s.noise_sigma}}},
         {"layer_sigma_by_range", {{"band", s.layer_band}, {"sigma", s.layer_sigma}}},
