@@ -113,6 +113,8 @@ void mark_edges(const CubeIndex& index, const Slab& slab, const std::vector<Surf
     }
 }
 
+/// The moves of the points of one slab's cubes near an edge: read from the labels, appended to
+/// `moves`.
 void edge_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Surface>& surfaces,
                std::span<const double> tolerance, const LayerShifts& shifts,
                const CubeSurfaces& near, const std::vector<std::uint8_t>& near_edge, EdgeScratch& s,
