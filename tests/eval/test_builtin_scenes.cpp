@@ -183,6 +183,12 @@ INSTANTIATE_TEST_SUITE_P(Scenes, AttackScene,
 // per test under qemu-aarch64).
 class ChannelPoseDraws : public ::testing::TestWithParam<double> {};
 constexpr double kDrawsMaxShareOver45 = 0.006;
+// The channel from four poses (BuiltinSceneIBeam.FourFusedPosesHeldToTheirMeasuredGap): on the
+// tests' pose draw 0.5 % and 0.8 % of the points > 45 degrees off (offset 0 and 40 mm), through
+// the bound planes 2.2 % and 0.9 %; `surfgrow scan --poses 4 --pose-error 2mm
+// --pose-error-angle 0.1` draws 0.9-1.3 % and 1.3-2.5 %.
+constexpr double kFourPosesOver45 = 0.011;
+constexpr double kFourPosesPlanesOver45 = 0.028;
 
 TEST_P(ChannelPoseDraws, FusedScansRegisterEveryRangeBandWhateverThePoseErrorsDraw) {
     // Each face lies a little off in each scan (its range bias there, the pose error), and the
@@ -226,6 +232,40 @@ INSTANTIATE_TEST_SUITE_P(BuiltinSceneIBeam, ChannelPoseDraws, ::testing::Values(
                          [](const auto& param_info) {
                              return std::string(param_info.param > 0 ? "offset_40mm" : "offset_0");
                          });
+
+TEST(BuiltinSceneIBeam, FourFusedPosesHeldToTheirMeasuredGap) {
+    // Four poses along the channel (surfgrow scan --poses 4) put the end scans beside the
+    // stiffeners: each 12 mm end face, seen nearly head-on, holds about 1,800 points, and the
+    // faces beside it take nearly all of them, as they take the top flanges' 30 mm edges (docs/
+    // algorithm.md, "What the disk test does not reach yet"). Three poses hide this: there the
+    // ends hold a few hundred points. Held to the level measured on 2026-12-06 so that it cannot
+    // grow unseen; issue 13's 0.5 % is not met here.
+    SURFGROW_SKIP_UNDER_SANITIZERS();
+    const scanner::Scene scene(scanner::builtin_scene("ibeam-channel"));
+    for (const double offset : {0.0, 0.040}) {
+        scanner::ScannerSpec spec;
+        spec.optical_offset_m = Vec3d(0, 0, offset);
+        const auto poses = scanner::scan_poses(scene.description().scanner, 4);
+        std::vector<scanner::RawScan> raws;
+        for (auto& sim : scanner::ScanSimulator(scene, spec).simulate(poses, 1))
+            raws.push_back(std::move(sim.raw));
+        for (std::size_t k = 0; k < raws.size(); ++k)
+            raws[k].pose = scanner::perturb_pose(raws[k].pose, 0.002, scanner::deg_to_rad(0.1),
+                                                 mix_seed(7, k));
+        const PointCloud fused = scanner::fuse_scans(raws);
+        const Grown g = grow_and_evaluate(fused, scene, "ibeam-channel, 4 poses", GrowerConfig{});
+        const EvalReport& r = g.report;
+        EXPECT_GE(r.planar.fraction(), kMinRegistered) << offset;
+        for (const BandReport& b : r.bands) {
+            if (b.planar.points < 1000) continue;
+            EXPECT_GE(b.planar.fraction(), kMinRegistered) << b.from_m << "-" << b.to_m << " m";
+        }
+        EXPECT_LE(r.normal_deg.p95, kMaxPatchP95) << offset;
+        EXPECT_LE(r.planes.normal_deg.p95, kMaxPlaneP95) << offset;
+        EXPECT_LE(r.normal_over_45, kFourPosesOver45) << offset;
+        EXPECT_LE(r.planes.over_45, kFourPosesPlanesOver45) << offset;
+    }
+}
 
 TEST(BuiltinSceneIBeam, TheFlangesInnerEdgesGetSurfacesFacingTheirWay) {
     // The top flanges' inner edges: strips about 25 mm wide facing the channel, between the deck's
