@@ -4,7 +4,7 @@
 // tails of the per-point normal error, for patches and through the bound planes.
 // Run: build/bench/robustness_study [--paper] [--scene NAME] [--spread S] [--incidence DEG]
 //      [--sigmas K] [--mu-max FACTOR] [--alpha A] [--pool-radius MU] [--pool-angle DEG]
-//      [--thickness K] [--no-attach] [--pose-seed S] [--min-new N]
+//      [--thickness K] [--no-attach] [--pose-seed S] [--poses N] [--min-new N]
 // Where the tail lies, by environment variable: STUDY_TIMES (stages and counters), STUDY_NOISE
 // (the noise and layer profiles), STUDY_BANDS (by range band and incidence), STUDY_KINDS (how the
 // points > 45 deg off went wrong; with STUDY_MIXED, the surfaces mostly of mixed pixels),
@@ -36,6 +36,8 @@ using namespace surfgrow;
 namespace {
 
 std::uint64_t pose_seed = 7;  // the pose errors: as the tests draw them
+// How many poses the fused rows fuse (--poses): 3, as the scene tests.
+int fused_poses = 3;
 
 // As tests/eval/test_builtin_scenes.cpp scans: three poses along the scene's scan path; one scan
 // is the middle one, three are fused with recorded poses 2 mm and 0.1 degree off, as a robot's are.
@@ -44,7 +46,9 @@ PointCloud scan(const scanner::Scene& scene, double offset_m, int poses, std::ui
     spec.optical_offset_m = Vec3d(0, 0, offset_m);
     const scanner::ScanSimulator sim(scene, spec);
     std::vector<scanner::RawScan> raws;
-    for (auto& s : sim.simulate(scanner::scan_poses(scene.description().scanner, 3), seed))
+    // One scan is the middle of three, whatever the fused rows fuse.
+    const int count = poses == 1 ? 3 : poses;
+    for (auto& s : sim.simulate(scanner::scan_poses(scene.description().scanner, count), seed))
         raws.push_back(std::move(s.raw));
     if (poses == 1) return scanner::fuse_scans(std::span<const scanner::RawScan>(&raws[1], 1));
     for (std::size_t k = 0; k < raws.size(); ++k)
@@ -90,6 +94,9 @@ int main(int argc, char** argv) {
             ++a;
         } else if (arg == "--no-attach") {
             config.attach_leftovers = false;
+        } else if (arg == "--poses") {
+            fused_poses = std::max(2, std::atoi(next));
+            ++a;
         } else if (arg == "--pose-seed") {
             pose_seed = std::strtoull(next, nullptr, 10);
             ++a;
@@ -118,7 +125,7 @@ int main(int argc, char** argv) {
                 .name.c_str();
         };
         for (const double offset : {0.0, 0.040}) {
-            for (const int poses : {1, 3}) {
+            for (const int poses : {1, fused_poses}) {
                 const PointCloud cloud = scan(scene, offset, poses, 1);
                 const Stopwatch watch;
                 const GrowResult r = grow_surfaces(cloud, config);
