@@ -74,6 +74,27 @@ struct Attack {
     PointCloud single, fused;
 };
 
+// The scans of `poses` poses along the scene's scan path, seed 1, the optical centre `offset_m`
+// above the tilt axis.
+std::vector<scanner::RawScan> simulate_scans(const scanner::Scene& scene, double offset_m,
+                                             int poses) {
+    scanner::ScannerSpec spec;
+    spec.optical_offset_m = Vec3d(0, 0, offset_m);
+    std::vector<scanner::RawScan> raws;
+    for (auto& sim : scanner::ScanSimulator(scene, spec)
+                         .simulate(scanner::scan_poses(scene.description().scanner, poses), 1))
+        raws.push_back(std::move(sim.raw));
+    return raws;
+}
+
+// The scans fused with recorded poses 2 mm and 0.1 degree off, pose draw `draw`.
+PointCloud fuse_with_pose_errors(std::vector<scanner::RawScan> raws, std::uint64_t draw) {
+    for (std::size_t k = 0; k < raws.size(); ++k)
+        raws[k].pose =
+            scanner::perturb_pose(raws[k].pose, 0.002, scanner::deg_to_rad(0.1), mix_seed(draw, k));
+    return scanner::fuse_scans(raws);
+}
+
 const Attack& attack(const std::string& name, double offset_m) {
     static std::map<std::pair<std::string, double>, Attack> cache;
     const auto key = std::make_pair(name, offset_m);
@@ -81,17 +102,9 @@ const Attack& attack(const std::string& name, double offset_m) {
     if (it != cache.end()) return it->second;
     Attack a;
     a.scene = std::make_unique<scanner::Scene>(scanner::builtin_scene(name));
-    scanner::ScannerSpec spec;
-    spec.optical_offset_m = Vec3d(0, 0, offset_m);
-    const auto poses = scanner::scan_poses(a.scene->description().scanner, 3);
-    std::vector<scanner::RawScan> raws;
-    for (auto& sim : scanner::ScanSimulator(*a.scene, spec).simulate(poses, 1))
-        raws.push_back(std::move(sim.raw));
+    std::vector<scanner::RawScan> raws = simulate_scans(*a.scene, offset_m, 3);
     a.single = scanner::fuse_scans(std::span<const scanner::RawScan>(&raws[1], 1));
-    for (std::size_t k = 0; k < raws.size(); ++k)
-        raws[k].pose =
-            scanner::perturb_pose(raws[k].pose, 0.002, scanner::deg_to_rad(0.1), mix_seed(7, k));
-    a.fused = scanner::fuse_scans(raws);
+    a.fused = fuse_with_pose_errors(std::move(raws), 7);
     return cache.emplace(key, std::move(a)).first->second;
 }
 
@@ -202,18 +215,9 @@ TEST_P(ChannelPoseDraws, FusedScansRegisterEveryRangeBandWhateverThePoseErrorsDr
     const std::string name = "ibeam-channel";
     const double offset = GetParam();
     const scanner::Scene scene(scanner::builtin_scene(name));
-    scanner::ScannerSpec spec;
-    spec.optical_offset_m = Vec3d(0, 0, offset);
-    const auto poses = scanner::scan_poses(scene.description().scanner, 3);
-    std::vector<scanner::RawScan> raws;
-    for (auto& sim : scanner::ScanSimulator(scene, spec).simulate(poses, 1))
-        raws.push_back(std::move(sim.raw));
+    const std::vector<scanner::RawScan> raws = simulate_scans(scene, offset, 3);
     for (const std::uint64_t draw : {1, 2, 3, 4, 5}) {
-        std::vector<scanner::RawScan> recorded = raws;
-        for (std::size_t k = 0; k < recorded.size(); ++k)
-            recorded[k].pose = scanner::perturb_pose(recorded[k].pose, 0.002,
-                                                     scanner::deg_to_rad(0.1), mix_seed(draw, k));
-        const PointCloud fused = scanner::fuse_scans(recorded);
+        const PointCloud fused = fuse_with_pose_errors(raws, draw);
         const GrowResult r = grow_surfaces(fused, GrowerConfig{});
         const EvalReport e = evaluate(fused, r, scene.faces());
         std::cout << "offset " << offset * 1000 << " mm, pose draw " << draw << ": " << eval_line(e)
@@ -243,16 +247,7 @@ TEST(BuiltinSceneIBeam, FourFusedPosesHeldToTheirMeasuredGap) {
     SURFGROW_SKIP_UNDER_SANITIZERS();
     const scanner::Scene scene(scanner::builtin_scene("ibeam-channel"));
     for (const double offset : {0.0, 0.040}) {
-        scanner::ScannerSpec spec;
-        spec.optical_offset_m = Vec3d(0, 0, offset);
-        const auto poses = scanner::scan_poses(scene.description().scanner, 4);
-        std::vector<scanner::RawScan> raws;
-        for (auto& sim : scanner::ScanSimulator(scene, spec).simulate(poses, 1))
-            raws.push_back(std::move(sim.raw));
-        for (std::size_t k = 0; k < raws.size(); ++k)
-            raws[k].pose = scanner::perturb_pose(raws[k].pose, 0.002, scanner::deg_to_rad(0.1),
-                                                 mix_seed(7, k));
-        const PointCloud fused = scanner::fuse_scans(raws);
+        const PointCloud fused = fuse_with_pose_errors(simulate_scans(scene, offset, 4), 7);
         const Grown g = grow_and_evaluate(fused, scene, "ibeam-channel, 4 poses", GrowerConfig{});
         const EvalReport& r = g.report;
         EXPECT_GE(r.planar.fraction(), kMinRegistered) << offset;

@@ -145,7 +145,7 @@ void edge_slab(const GrowContext& ctx, const Slab& slab, const std::vector<Surfa
             const std::size_t scan = ctx.sight.scan_of(i);
             if (scan >= shifts.scans) continue;
             const Vec3f p = index.local_point(i);
-            const Vec3d pw = index.origin() + p.cast<double>();
+            const Vec3d pw = index.world_point(i);
             auto layer_distance = [&](std::int32_t sid) {
                 const auto k = static_cast<std::size_t>(sid);
                 return std::abs(signed_distance(surfaces[k], pw) - shifts.of(k, scan));
