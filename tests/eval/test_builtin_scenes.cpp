@@ -198,10 +198,11 @@ class ChannelPoseDraws : public ::testing::TestWithParam<double> {};
 constexpr double kDrawsMaxShareOver45 = 0.006;
 // The channel from four poses (BuiltinSceneIBeam.FourFusedPosesHeldToTheirMeasuredGap): on the
 // tests' pose draw 0.5 % and 0.8 % of the points > 45 degrees off (offset 0 and 40 mm), through
-// the bound planes 2.2 % and 0.9 %; `surfgrow scan --poses 4 --pose-error 2mm
-// --pose-error-angle 0.1` draws 0.9-1.3 % and 1.3-2.5 %.
+// the bound planes 0.5 % and 0.9 % (2.2 % at offset 0 before a strip narrower than its noise
+// kept its patches' normal, 2026-12-06); `surfgrow scan --poses 4 --pose-error 2mm
+// --pose-error-angle 0.1` draws 0.9-1.3 % and, through the planes, 0.9-1.3 % (was 1.3-2.5 %).
 constexpr double kFourPosesOver45 = 0.011;
-constexpr double kFourPosesPlanesOver45 = 0.028;
+constexpr double kFourPosesPlanesOver45 = 0.011;
 
 TEST_P(ChannelPoseDraws, FusedScansRegisterEveryRangeBandWhateverThePoseErrorsDraw) {
     // Each face lies a little off in each scan (its range bias there, the pose error), and the

@@ -363,6 +363,138 @@ TEST(BoundPlanes, CollinearPatchesGiveADegeneratePlaneNotACrash) {
     EXPECT_FALSE(mesh_bound_planes(p).triangles.empty());
 }
 
+// A plate's end seen head-on: a strip 12 mm wide (x) and 0.5 m tall (z) on the plane y = 0,
+// its points spread along the normal by range noise (sigma 5 mm, as a 4-pose fused scan's layers
+// give) more deeply than across its width (12 mm uniform: 3.5 mm). Hand-made patches along it,
+// 20 mm apart, each with the face's normal, as growing gives them there. The points alone fit the
+// plane x = 6 mm: 90 degrees off.
+struct Strip {
+    PointCloud cloud;
+    GrowResult result;
+};
+
+Strip end_face_strip(std::uint64_t seed) {
+    Strip s;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> across(0.0, 0.012);
+    std::normal_distribution<double> depth(0.0, 0.005);
+    constexpr int kPatches = 25, kPerPatch = 60;
+    for (int k = 0; k < kPatches; ++k) {
+        Surface f;
+        Vec3d sum = Vec3d::Zero();
+        for (int i = 0; i < kPerPatch; ++i) {
+            const Vec3d p(across(rng), depth(rng), 0.02 * k + 0.02 * i / kPerPatch);
+            s.cloud.points.push_back(p.cast<float>());
+            s.result.labels.push_back(k);
+            sum += p;
+        }
+        f.home = sum / kPerPatch;
+        f.centroid = f.home;
+        f.normal = -Vec3d::UnitY();  // facing a sensor at y < 0
+        f.radius = 0.012;
+        f.neighbours = kPerPatch;
+        f.point_count = kPerPatch;
+        f.eigenvalues = Vec3d(2.2e-6, 1.6e-5, 2.9e-5);  // a disk's spread: it spans its ball
+        s.result.surfaces.push_back(f);
+    }
+    s.cloud.viewpoint = Vec3d(0.006, -1.0, 0.25);
+    return s;
+}
+
+TEST(BoundPlanes, AStripNarrowerThanItsNoiseTakesItsPatchesNormal) {
+    for (const std::uint64_t seed : {1u, 2u, 3u}) {
+        const Strip s = end_face_strip(seed);
+        const BoundPlanes p = compute_bound_planes(s.cloud, s.result, BoundPlaneConfig{});
+        ASSERT_FALSE(p.planes.empty());
+        for (const BoundPlane& bp : p.planes) {
+            EXPECT_LT(angle_between(bp.normal, -Vec3d::UnitY()), 1e-6) << seed;
+            EXPECT_TRUE(bp.degenerate) << "its points define no plane of their own";
+        }
+    }
+}
+
+TEST(BoundPlanes, AStripNarrowerThanItsNoiseIsNotBridgedToAFaceAcrossItsWidth) {
+    // The strip's end meets, across a 30 mm gap, the plate's side: the plane x = 6 mm (normal x),
+    // which the strip's points alone would fit. Its patches face -y: the two stay apart.
+    Strip s = end_face_strip(4);
+    std::mt19937_64 rng(5);
+    std::normal_distribution<double> noise(0.0, 0.001);
+    const auto strip_patches = static_cast<std::int32_t>(s.result.surfaces.size());
+    for (int k = 0; k < 6; ++k) {
+        Surface f;
+        Vec3d sum = Vec3d::Zero();
+        for (int i = 0; i < 10; ++i)
+            for (int j = 0; j < 10; ++j) {
+                const Vec3d p(0.006 + noise(rng), 0.002 * i, 0.53 + 0.02 * k + 0.002 * j);
+                s.cloud.points.push_back(p.cast<float>());
+                s.result.labels.push_back(strip_patches + k);
+                sum += p;
+            }
+        f.home = sum / 100;
+        f.centroid = f.home;
+        f.normal = Vec3d::UnitX();
+        f.radius = 0.012;
+        f.neighbours = 100;
+        f.point_count = 100;
+        s.result.surfaces.push_back(f);
+    }
+    const BoundPlanes p = compute_bound_planes(s.cloud, s.result, BoundPlaneConfig{});
+    for (const BoundPlane& bp : p.planes) {
+        const bool strip = bp.patches.front() < static_cast<std::uint32_t>(strip_patches);
+        for (const std::uint32_t id : bp.patches)
+            EXPECT_EQ(id < static_cast<std::uint32_t>(strip_patches), strip) << "one plane";
+        EXPECT_LT(angle_between(bp.normal, strip ? Vec3d(-Vec3d::UnitY()) : Vec3d(Vec3d::UnitX())),
+                  1.0 * kDeg);
+    }
+}
+
+TEST(BoundPlanes, PatchesOverruleThePointsOnlyAcrossAndOnlyWhenTheySpanTheirBalls) {
+    // A flat plate z = 0 (0.2 x 0.2 m, 1 mm noise) in 16 hand-made patches: its points define
+    // its plane, whatever normals its patches claim, unless spanning patches put it across.
+    const auto plate = [](const Vec3d& normal, const Vec3d& eigenvalues) {
+        Strip s;
+        std::mt19937_64 rng(9);
+        std::normal_distribution<double> noise(0.0, 0.001);
+        for (int k = 0; k < 16; ++k) {
+            Surface f;
+            Vec3d sum = Vec3d::Zero();
+            for (int i = 0; i < 10; ++i)
+                for (int j = 0; j < 10; ++j) {
+                    const Vec3d p(0.05 * (k % 4) + 0.005 * i, 0.05 * (k / 4) + 0.005 * j,
+                                  noise(rng));
+                    s.cloud.points.push_back(p.cast<float>());
+                    s.result.labels.push_back(k);
+                    sum += p;
+                }
+            f.home = sum / 100;
+            f.centroid = f.home;
+            f.normal = normal;
+            f.radius = 0.03;
+            f.neighbours = 100;
+            f.point_count = 100;
+            f.eigenvalues = eigenvalues;
+            s.result.surfaces.push_back(f);
+        }
+        s.cloud.viewpoint = Vec3d(0.1, 0.1, 1.0);
+        return compute_bound_planes(s.cloud, s.result, BoundPlaneConfig{});
+    };
+    const Vec3d disk(1e-6, 2e-4, 2.2e-4), line(1e-6, 1e-6, 2.2e-4);
+    const Vec3d tilted = Vec3d(std::sin(30 * kDeg), 0, std::cos(30 * kDeg));
+    for (const auto& [normal, ev, what] :
+         {std::tuple{tilted, disk, "spanning patches 30 degrees off"},
+          std::tuple{Vec3d(Vec3d::UnitX()), line, "line patches 90 degrees off"}}) {
+        const BoundPlanes p = plate(normal, ev);
+        ASSERT_FALSE(p.planes.empty()) << what;
+        // Unoriented: line patches' normals lie in the plate and cannot say which side faces up.
+        EXPECT_GT(std::abs(p.planes[0].normal.z()), std::cos(0.5 * kDeg)) << what;
+        EXPECT_FALSE(p.planes[0].degenerate) << what;
+    }
+    // Spanning patches across it: the plate is taken for the end of a plate seen head-on.
+    const BoundPlanes across = plate(Vec3d::UnitX(), disk);
+    ASSERT_FALSE(across.planes.empty());
+    EXPECT_LT(angle_between(across.planes[0].normal, Vec3d::UnitX()), 1e-6);
+}
+
 TEST(BoundPlanes, RefusesInconsistentInputAndBadParameters) {
     const Grown g = grow_rects({kFloor}, 0.0);
     auto code = [&](const PointCloud& c, const GrowResult& r, const BoundPlaneConfig& cfg) {

@@ -13,6 +13,7 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/length_limits.hpp"
 #include "surfgrow/core/moments.hpp"
+#include "surfgrow/core/plane_test.hpp"
 #include "surfgrow/core/symmetric_eigen.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/core/threads.hpp"
@@ -53,6 +54,39 @@ Fit fit_moments(const CentredMoments& m) {
     return f;
 }
 
+// Adds a normal (or a sum of them) to a sum, sign-aligned with it, times `weight`.
+void add_normal(Vec3d& sum, const Vec3d& normal, double weight) {
+    sum += (normal.dot(sum) >= 0 ? weight : -weight) * normal;
+}
+
+// Whether a patch's points span its ball in both directions (the default disk test's spread):
+// its normal is then measured, not the arbitrary one of a line or a blob (eq. (2) passes those).
+bool spans_its_ball(const Surface& s) {
+    return s.eigenvalues[1] >= DiskTest{}.min_spread * disk_variance(s.radius);
+}
+
+// Adds a patch's normal to a region's judging sum (region_fit) when the patch spans its ball.
+void add_judge(Vec3d& sum, const Surface& s, double weight) {
+    if (spans_its_ball(s)) add_normal(sum, s.normal, weight);
+}
+
+// A region's plane from its points' moments, degenerate when they cannot define it: collinear,
+// or spread less across the region than along its normal (a 12 mm plate's end seen head-on by
+// scans whose range noise and pose errors spread it deeper than wide). Their plane then turns
+// 60-90 degrees from its patches', each of which spans its own ball: a plane closer to
+// perpendicular than to parallel to the mean normal of such patches (`judge`, add_judge) is that
+// case. Smaller disagreements are the patches' noise (and with eq. (2) their edges): there, and
+// where no patch spans its ball, the points' plane stands.
+constexpr double kCosAcross = 0.70710678118654752;  // cos 45 degrees
+
+Fit region_fit(const CentredMoments& m, const Vec3d& judge) {
+    Fit f = fit_moments(m);
+    const double norm = judge.norm();
+    if (!f.degenerate && norm > 0 && std::abs(f.normal.dot(judge)) < kCosAcross * norm)
+        f.degenerate = true;
+    return f;
+}
+
 double median_of(std::vector<double> v) {
     if (v.empty()) return 0.0;
     const auto mid = v.begin() + static_cast<long>(v.size() / 2);
@@ -89,6 +123,14 @@ CentredMoments inlier_moments(std::span<const Vec3d> points, const Vec3d& normal
     return CentredMoments::of(about_centroid, centroid);
 }
 
+// Regions of coplanar patches, by index.
+struct Regions {
+    std::vector<std::int32_t> of_patch;
+    std::vector<std::vector<std::uint32_t>> members;
+    std::vector<CentredMoments> moments;
+    std::vector<Vec3d> judges;  ///< the normals of the patches that span their balls (add_judge)
+};
+
 // A region of at most kFragmentPatches patches (a patch on an edge, a noisy patch whose normal
 // missed the angle test) whose member points lie, at least kFragmentFit of them, as close to an
 // adjacent larger region's plane as that region's own points do (within the offset, or twice
@@ -100,18 +142,20 @@ constexpr double kFragmentFit = 0.8;
 
 void absorb_fragments(const PatchMembers& members, const std::vector<std::uint32_t>& adj_off,
                       const std::vector<std::uint32_t>& adj, const BoundPlaneConfig& cfg,
-                      std::vector<std::int32_t>& region,
-                      std::vector<std::vector<std::uint32_t>>& region_members,
-                      std::vector<CentredMoments>& region_moments,
-                      const std::vector<CentredMoments>& moments) {
+                      const std::vector<CentredMoments>& moments, Regions& regions) {
+    std::vector<std::int32_t>& region = regions.of_patch;
+    std::vector<std::vector<std::uint32_t>>& region_members = regions.members;
+    std::vector<CentredMoments>& region_moments = regions.moments;
     const std::size_t nr = region_members.size();
     std::vector<Plane> planes(nr);
     std::vector<double> tolerance(nr);
+    std::vector<std::uint8_t> defined(nr);  // a region whose points define no plane takes none
     for (std::size_t r = 0; r < nr; ++r) {
         const CentredMoments& m = region_moments[r];
-        const Fit f = fit_moments(m);
+        const Fit f = region_fit(m, regions.judges[r]);
         planes[r] = Plane::through(m.mean, f.normal);
         tolerance[r] = std::max(cfg.max_offset, 2 * std::sqrt(f.eigenvalues[0]));
+        defined[r] = !f.degenerate;
     }
     std::vector<std::int32_t> target(nr, -1);
     std::vector<std::int32_t> candidates;
@@ -121,7 +165,8 @@ void absorb_fragments(const PatchMembers& members, const std::vector<std::uint32
         for (const std::uint32_t p : region_members[r])
             for (std::uint32_t k = adj_off[p]; k < adj_off[p + 1]; ++k) {
                 const std::int32_t q = region[adj[k]];
-                if (region_members[static_cast<std::size_t>(q)].size() > kFragmentPatches)
+                if (region_members[static_cast<std::size_t>(q)].size() > kFragmentPatches &&
+                    defined[static_cast<std::size_t>(q)])
                     candidates.push_back(q);
             }
         std::sort(candidates.begin(), candidates.end());
@@ -151,8 +196,10 @@ void absorb_fragments(const PatchMembers& members, const std::vector<std::uint32
             region_members[q].push_back(p);
             region_moments[q].merge(moments[p]);
         }
+        add_normal(regions.judges[q], regions.judges[r], 1.0);
         region_members[r].clear();
         region_moments[r] = CentredMoments{};
+        regions.judges[r] = Vec3d::Zero();
     }
 }
 
@@ -169,9 +216,10 @@ double misfit(const CentredMoments& m, const Fit& own, const Fit& pooled, const 
 // pooled fit agree in angle, and the pooled plane fits each within the offset (misfit). Pairs
 // are tried in region order; pooled moments keep chains of merges from drifting.
 void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8_t>& used,
-                 const std::vector<std::int32_t>& region, const BoundPlaneConfig& cfg,
-                 std::vector<std::vector<std::uint32_t>>& region_members,
-                 std::vector<CentredMoments>& region_moments, int threads) {
+                 const BoundPlaneConfig& cfg, Regions& regions, int threads) {
+    const std::vector<std::int32_t>& region = regions.of_patch;
+    std::vector<std::vector<std::uint32_t>>& region_members = regions.members;
+    std::vector<CentredMoments>& region_moments = regions.moments;
     const std::size_t nr = region_members.size();
     if (cfg.max_gap <= 0 || nr < 2) return;
     std::vector<Vec3f> homes(surfaces.size());
@@ -248,7 +296,10 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
         const CentredMoments &ma = region_moments[a], &mb = region_moments[b];
         CentredMoments pooled = ma;
         pooled.merge(mb);
-        const Fit fa = fit_moments(ma), fb = fit_moments(mb), fp = fit_moments(pooled);
+        Vec3d judge = regions.judges[a];
+        add_normal(judge, regions.judges[b], 1.0);
+        const Fit fa = region_fit(ma, regions.judges[a]), fb = region_fit(mb, regions.judges[b]),
+                  fp = region_fit(pooled, judge);
         if (fa.degenerate || fb.degenerate || fp.degenerate) continue;
         if (!parallel(fa.normal, fb.normal) || !parallel(fa.normal, fp.normal) ||
             !parallel(fb.normal, fp.normal))
@@ -260,6 +311,8 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
         parent[gone] = keep;
         region_moments[keep] = pooled;
         region_moments[gone] = CentredMoments{};
+        regions.judges[keep] = judge;
+        regions.judges[gone] = Vec3d::Zero();
         auto& list = region_members[keep];
         list.insert(list.end(), region_members[gone].begin(), region_members[gone].end());
         region_members[gone].clear();
@@ -363,11 +416,23 @@ PatchGraph patch_graph(std::span<const std::pair<std::uint32_t, std::uint32_t>> 
 
 // Regions of coplanar patches: each patch's region (-1: none), each region's patches and pooled
 // moments.
-struct Regions {
-    std::vector<std::int32_t> of_patch;
-    std::vector<std::vector<std::uint32_t>> members;
-    std::vector<CentredMoments> moments;
-};
+
+// Removes the regions merged into others (members emptied); of_patch is not used after.
+void drop_emptied(Regions& regions) {
+    std::size_t kept = 0;
+    for (std::size_t r = 0; r < regions.members.size(); ++r) {
+        if (regions.members[r].empty()) continue;
+        if (kept != r) {
+            regions.members[kept] = std::move(regions.members[r]);
+            regions.moments[kept] = regions.moments[r];
+            regions.judges[kept] = regions.judges[r];
+        }
+        ++kept;
+    }
+    regions.members.resize(kept);
+    regions.moments.resize(kept);
+    regions.judges.resize(kept);
+}
 
 // Region growing over the patch graph, seeds by decreasing member count: a neighbour joins when
 // it is coplanar with the patch that reached it and with the region's pooled plane so far.
@@ -403,9 +468,12 @@ Regions grow_regions(std::span<const Surface> surfaces, const PatchMembers& memb
         const auto r = static_cast<std::int32_t>(region_members.size());
         std::vector<std::uint32_t> list{seed};
         CentredMoments pooled = moments[seed];
-        Vec3d weighted = surfaces[seed].normal * pooled.n;  // fallback normal while collinear
+        Vec3d weighted = Vec3d::Zero();  // the normal while the points cannot define one
+        Vec3d judge = Vec3d::Zero();
+        add_normal(weighted, surfaces[seed].normal, pooled.n);
+        add_judge(judge, surfaces[seed], pooled.n);
         auto region_normal = [&] {
-            const Fit f = fit_moments(pooled);
+            const Fit f = region_fit(pooled, judge);
             return f.degenerate ? Vec3d(weighted.normalized()) : f.normal;
         };
         Vec3d rn = region_normal();
@@ -424,13 +492,15 @@ Regions grow_regions(std::span<const Surface> surfaces, const PatchMembers& memb
                 region[p] = r;
                 list.push_back(p);
                 pooled.merge(moments[p]);
-                weighted += (sp.normal.dot(weighted) >= 0 ? 1.0 : -1.0) * moments[p].n * sp.normal;
+                add_normal(weighted, sp.normal, moments[p].n);
+                add_judge(judge, sp, moments[p].n);
                 rn = region_normal();
                 queue.push_back(p);
             }
         }
         region_members.push_back(std::move(list));
         region_moments.push_back(pooled);
+        regions.judges.push_back(judge);
     }
     return regions;
 }
@@ -440,9 +510,9 @@ Regions grow_regions(std::span<const Surface> surfaces, const PatchMembers& memb
 BoundPlane fit_region(std::span<const Surface> surfaces, const PatchMembers& members,
                       const std::vector<CentredMoments>& moments,
                       const std::vector<std::uint32_t>& list, const CentredMoments& all,
-                      const BoundPlaneConfig& cfg) {
+                      const Vec3d& judge, const BoundPlaneConfig& cfg) {
     BoundPlane plane;
-    Fit fit = fit_moments(all);
+    Fit fit = region_fit(all, judge);
     CentredMoments m = all;
     std::vector<Vec3d> points;  // the members, contiguous: every pass below streams them
     points.reserve(static_cast<std::size_t>(all.n));
@@ -455,7 +525,7 @@ BoundPlane fit_region(std::span<const Surface> surfaces, const PatchMembers& mem
         for (int pass = 0; pass < kRefitPasses; ++pass) {
             const CentredMoments inliers =
                 inlier_moments(points, fit.normal, m.mean, kInlierSigmas, spread, scratch);
-            const Fit f = fit_moments(inliers);
+            const Fit f = region_fit(inliers, judge);
             if (inliers.n < 3 || f.degenerate) break;
             const bool same = inliers.n == m.n;
             m = inliers;
@@ -470,9 +540,7 @@ BoundPlane fit_region(std::span<const Surface> surfaces, const PatchMembers& mem
     Vec3d n = fit.normal;
     if (fit.degenerate) {  // the patches' own normals, sign-aligned and point-weighted
         Vec3d sum = Vec3d::Zero();
-        for (const std::uint32_t s : list)
-            sum += (surfaces[s].normal.dot(surfaces[list[0]].normal) >= 0 ? 1.0 : -1.0) *
-                   moments[s].n * surfaces[s].normal;
+        for (const std::uint32_t s : list) add_normal(sum, surfaces[s].normal, moments[s].n);
         n = sum.norm() > 0 ? Vec3d(sum.normalized()) : surfaces[list[0]].normal;
     }
     // Orientation: the majority of the member patches' (sensor-facing) normals; a tie goes
@@ -608,11 +676,9 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
     out.stats.adjacent_pairs = pairs.size();
     const PatchGraph graph = patch_graph(pairs, ns);
     Regions regions = grow_regions(surfaces, members, moments, used, graph, cfg);
-    absorb_fragments(members, graph.off, graph.adj, cfg, regions.of_patch, regions.members,
-                     regions.moments, moments);
-    bridge_gaps(surfaces, used, regions.of_patch, cfg, regions.members, regions.moments, threads);
-    std::erase_if(regions.members, [](const std::vector<std::uint32_t>& l) { return l.empty(); });
-    std::erase_if(regions.moments, [](const CentredMoments& m) { return m.n == 0; });
+    absorb_fragments(members, graph.off, graph.adj, cfg, moments, regions);
+    bridge_gaps(surfaces, used, cfg, regions, threads);
+    drop_emptied(regions);
     for (std::vector<std::uint32_t>& list : regions.members) std::sort(list.begin(), list.end());
 
     // Each region's plane, frame and boundary; independent, so in parallel.
@@ -622,8 +688,8 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (std::size_t r = 0; r < nr; ++r)
         errors.run(r, [&] {
-            planes[r] =
-                fit_region(surfaces, members, moments, regions.members[r], regions.moments[r], cfg);
+            planes[r] = fit_region(surfaces, members, moments, regions.members[r],
+                                   regions.moments[r], regions.judges[r], cfg);
         });
     errors.rethrow();
     publish_planes(planes, out);

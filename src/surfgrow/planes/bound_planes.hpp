@@ -58,8 +58,10 @@ struct BoundPlane {
     std::uint64_t point_count = 0;       ///< member points
     std::vector<std::uint32_t> patches;  ///< member surface ids, ascending
     Aabb bounds;                         ///< of the member points
-    /// Member points collinear (or fewer than 3): no plane of their own, so the normal is the
-    /// patches' mean and the polygon a thin strip.
+    /// The member points define no plane: collinear (or fewer than 3), or their plane lies more
+    /// than 45 degrees from the mean normal of their patches that span their balls (a strip
+    /// narrower than its noise along its normal). The normal is then the patches' mean and the
+    /// polygon a thin strip.
     bool degenerate = false;
     /// Boundary in plane coordinates (a, b): the point centroid + a u_axis + b v_axis.
     std::vector<PolygonWithHoles> polygons;
@@ -78,7 +80,7 @@ struct BoundPlaneStats {
     std::uint64_t patches_merged = 0;  ///< surfaces in some plane (those with member points)
     std::uint64_t adjacent_pairs = 0;  ///< patch adjacency graph edges
     std::uint64_t points = 0;          ///< member points of all planes
-    std::uint64_t degenerate = 0;      ///< planes with collinear members
+    std::uint64_t degenerate = 0;      ///< planes whose points define none (BoundPlane)
     double area = 0.0;                 ///< sum of the planes' areas
     double noise = 0.0;                ///< median patch thickness sqrt(lambda_min)
 };
