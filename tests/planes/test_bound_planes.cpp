@@ -373,7 +373,8 @@ struct Strip {
     GrowResult result;
 };
 
-Strip end_face_strip(std::uint64_t seed) {
+// `layer(k)`: how far patch k's points lie behind the face [m], as a scan's layer does.
+Strip end_face_strip(std::uint64_t seed, const std::function<double(int)>& layer = {}) {
     Strip s;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> across(0.0, 0.012);
@@ -383,7 +384,8 @@ Strip end_face_strip(std::uint64_t seed) {
         Surface f;
         Vec3d sum = Vec3d::Zero();
         for (int i = 0; i < kPerPatch; ++i) {
-            const Vec3d p(across(rng), depth(rng), 0.02 * k + 0.02 * i / kPerPatch);
+            const Vec3d p(across(rng), depth(rng) + (layer ? layer(k) : 0.0),
+                          0.02 * k + 0.02 * i / kPerPatch);
             s.cloud.points.push_back(p.cast<float>());
             s.result.labels.push_back(k);
             sum += p;
@@ -411,6 +413,21 @@ TEST(BoundPlanes, AStripNarrowerThanItsNoiseTakesItsPatchesNormal) {
             EXPECT_TRUE(bp.degenerate) << "its points define no plane of their own";
         }
     }
+}
+
+TEST(BoundPlanes, AStripNarrowerThanItsNoiseIsOneRegionWhateverItsLayers) {
+    // The scans' layers put the patches 0-12 mm behind the face, 2 mm from patch to patch (within
+    // the 4.4 mm offset of each other, noise included) but up to 6 mm from the region's mean
+    // (beyond it). Along the patches' normal the strip's points spread by noise that deep: the
+    // region is not held to its mean's offset, only patch to patch.
+    const Strip s = end_face_strip(6, [](int k) {
+        constexpr int kWave[] = {0, 2, 4, 6, 8, 10, 12, 10, 8, 6, 4, 2};
+        return 0.001 * kWave[k % 12];
+    });
+    const BoundPlanes p = compute_bound_planes(s.cloud, s.result, BoundPlaneConfig{});
+    ASSERT_EQ(p.planes.size(), 1u);
+    EXPECT_EQ(p.planes[0].patches.size(), s.result.surfaces.size());
+    EXPECT_LT(angle_between(p.planes[0].normal, -Vec3d::UnitY()), 1e-6);
 }
 
 TEST(BoundPlanes, AStripNarrowerThanItsNoiseIsNotBridgedToAFaceAcrossItsWidth) {

@@ -472,8 +472,10 @@ Regions grow_regions(std::span<const Surface> surfaces, const PatchMembers& memb
         Vec3d judge = Vec3d::Zero();
         add_normal(weighted, surfaces[seed].normal, pooled.n);
         add_judge(judge, surfaces[seed], pooled.n);
+        bool defined = true;  // whether the points define the region's plane (region_fit)
         auto region_normal = [&] {
             const Fit f = region_fit(pooled, judge);
+            defined = !f.degenerate;
             return f.degenerate ? Vec3d(weighted.normalized()) : f.normal;
         };
         Vec3d rn = region_normal();
@@ -486,8 +488,11 @@ Regions grow_regions(std::span<const Surface> surfaces, const PatchMembers& memb
                 const std::uint32_t p = adj[k];
                 if (region[p] >= 0) continue;
                 const Surface& sp = surfaces[p];
+                // A region whose points define no plane is not held to its mean's offset: along
+                // its normal they spread by noise as deep as the strip (27 mm on a stiffener's
+                // end). Patch to patch the offset still holds (coplanar).
                 if (!coplanar(sp, surfaces[q]) || !parallel(sp.normal, rn) ||
-                    std::abs(rn.dot(sp.centroid - pooled.mean)) > off)
+                    (defined && std::abs(rn.dot(sp.centroid - pooled.mean)) > off))
                     continue;
                 region[p] = r;
                 list.push_back(p);
