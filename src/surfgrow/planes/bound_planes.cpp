@@ -13,11 +13,10 @@
 #include "surfgrow/core/error.hpp"
 #include "surfgrow/core/length_limits.hpp"
 #include "surfgrow/core/moments.hpp"
-#include "surfgrow/core/plane_test.hpp"
-#include "surfgrow/core/symmetric_eigen.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/core/threads.hpp"
 #include "surfgrow/planes/boundary_polygon.hpp"
+#include "surfgrow/planes/detail/region_fit.hpp"
 #include "surfgrow/planes/patch_adjacency.hpp"
 #include "surfgrow/planes/patch_members.hpp"
 #include "surfgrow/planes/plane_raster.hpp"
@@ -25,6 +24,11 @@
 namespace surfgrow {
 
 namespace {
+
+using detail::add_judge;
+using detail::add_normal;
+using detail::Fit;
+using detail::region_fit;
 
 constexpr double kDeg = M_PI / 180.0;
 // A face's plane is refitted on the member points within this many robust sigmas (1.4826 x the
@@ -34,57 +38,6 @@ constexpr int kRefitPasses = 5;
 
 [[noreturn]] void bad(std::initializer_list<std::string_view> what) {
     throw Error(ErrorCode::kInvalidParameter, cat(what));
-}
-
-struct Fit {
-    Vec3d normal = Vec3d::UnitZ();
-    Vec3d eigenvalues = Vec3d::Zero();
-    bool degenerate = true;
-};
-
-// Least-squares plane of the moments; degenerate when the points are (nearly) collinear.
-Fit fit_moments(const CentredMoments& m) {
-    Fit f;
-    if (m.n < 3) return f;
-    const Mat3d cov = 0.5 * (m.scatter + m.scatter.transpose()) / m.n;
-    const SymmetricEigen3 e = symmetric_eigen(cov);
-    f.normal = e.smallest_vector;
-    f.eigenvalues = e.values.cwiseMax(0.0);
-    f.degenerate = !(f.eigenvalues[1] > 1e-12 * f.eigenvalues[2] && f.eigenvalues[1] > 0);
-    return f;
-}
-
-// Adds a normal (or a sum of them) to a sum, sign-aligned with it, times `weight`.
-void add_normal(Vec3d& sum, const Vec3d& normal, double weight) {
-    sum += (normal.dot(sum) >= 0 ? weight : -weight) * normal;
-}
-
-// Whether a patch's points span its ball in both directions (the default disk test's spread):
-// its normal is then measured, not the arbitrary one of a line or a blob (eq. (2) passes those).
-bool spans_its_ball(const Surface& s) {
-    return s.eigenvalues[1] >= DiskTest{}.min_spread * disk_variance(s.radius);
-}
-
-// Adds a patch's normal to a region's judging sum (region_fit) when the patch spans its ball.
-void add_judge(Vec3d& sum, const Surface& s, double weight) {
-    if (spans_its_ball(s)) add_normal(sum, s.normal, weight);
-}
-
-// A region's plane from its points' moments, degenerate when they cannot define it: collinear,
-// or spread less across the region than along its normal (a 12 mm plate's end seen head-on by
-// scans whose range noise and pose errors spread it deeper than wide). Their plane then turns
-// 60-90 degrees from its patches', each of which spans its own ball: a plane closer to
-// perpendicular than to parallel to the mean normal of such patches (`judge`, add_judge) is that
-// case. Smaller disagreements are the patches' noise (and with eq. (2) their edges): there, and
-// where no patch spans its ball, the points' plane stands.
-constexpr double kCosAcross = 0.70710678118654752;  // cos 45 degrees
-
-Fit region_fit(const CentredMoments& m, const Vec3d& judge) {
-    Fit f = fit_moments(m);
-    const double norm = judge.norm();
-    if (!f.degenerate && norm > 0 && std::abs(f.normal.dot(judge)) < kCosAcross * norm)
-        f.degenerate = true;
-    return f;
 }
 
 double median_of(std::vector<double> v) {
