@@ -664,9 +664,13 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
         st.strip_surfaces = grow_strips(late, slabs, threads, result.surfaces, home_of, tolerance);
     // ... and a strip's plane reaches beyond its ball: the points still left go to the strip
     // they fit best, by the leftover pass's rules (no other surface fits them: the pass before).
-    if (st.strip_surfaces > 0)
-        attach_leftovers(late, slabs, result.surfaces, tolerance, threads, labels,
-                         static_cast<std::int32_t>(result.surfaces.size() - st.strip_surfaces));
+    if (st.strip_surfaces > 0) {
+        const auto first_strip =
+            static_cast<std::int32_t>(result.surfaces.size() - st.strip_surfaces);
+        attach_leftovers(late, slabs, result.surfaces, tolerance, threads, labels, first_strip);
+        // ... and farther along its face, step by step (the far ends of a flange's edge).
+        extend_strips(late, first_strip, result.surfaces, tolerance);
+    }
     // --- Stage 3c (fused clouds): points along edges to the face their own scan's layer fits.
     if (cfg.attach_leftovers && cfg.plane_test == PlaneTest::kDisk && surface_count > 0)
         st.edge_moves = reassign_at_edges(late, slabs, result.surfaces, tolerance, threads, labels);

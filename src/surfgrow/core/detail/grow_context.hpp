@@ -26,6 +26,10 @@ using Range = CubeIndex::Range;
 // counted as at least this much (grazing layers are few and thin on the ground).
 constexpr double kMinLayerCos = 0.25;
 
+// A leftover beside surfaces that it does not fit looks for others up to this many mu away (the
+// leftover pass), and a strip reaches along its face by steps this long (extend_strips).
+constexpr double kMissRadiusPerMu = 2.0;
+
 /// A slab: all cubes whose x coordinate lies in one interval; a contiguous run of cubes.
 struct Slab {
     std::uint32_t cube_begin = 0;

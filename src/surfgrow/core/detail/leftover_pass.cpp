@@ -17,8 +17,6 @@ namespace surfgrow::detail {
 
 namespace {
 
-// A leftover beside surfaces that it does not fit looks for others up to this many mu away.
-constexpr double kMissRadiusPerMu = 2.0;
 // Fused clouds: a leftover that lies in another scan's layer of a surface, as far from it as this
 // many sigmas of the measured layer offsets, goes to that surface (attach_layer). Each face has
 // one offset per scan, and the budget must hold the largest of a cloud's tens to hundreds of

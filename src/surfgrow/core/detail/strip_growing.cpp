@@ -16,6 +16,65 @@ namespace surfgrow::detail {
 namespace {
 // A neighbourhood of this many times min_pts that is still narrow is no strip at any radius.
 constexpr double kEnoughPoints = 10.0;
+
+/// The leftovers (a few per mille of the points) bucketed in cells of one side, keyed x, y, z
+/// (21 bits each, wrapping), sorted by key and then point.
+class LeftoverCells {
+  public:
+    using Cell = std::array<std::int64_t, 3>;
+
+    LeftoverCells(const CubeIndex& index, std::span<const std::int32_t> labels, double side)
+        : side_(side) {
+        for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(index.size()); ++i)
+            if (labels[i] < 0) {
+                const Cell c = cell_of(index.local_point(i));
+                left_.push_back({key_of(c[0], c[1], c[2]), i});
+            }
+        std::sort(left_.begin(), left_.end());
+    }
+
+    [[nodiscard]] Cell cell_of(const Vec3f& p) const {
+        Cell c;
+        for (int a = 0; a < 3; ++a)
+            c[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(
+                std::clamp(std::floor(static_cast<double>(p[a]) / side_), -4e18, 4e18));
+        return c;
+    }
+
+    /// Calls f(point) for each leftover in cells (x, y, z0 .. z1), in key order (z may wrap at
+    /// 2^21: then two ranges of keys).
+    template <class F>
+    void each_in(std::int64_t x, std::int64_t y, std::int64_t z0, std::int64_t z1, F&& f) const {
+        auto range = [&](std::uint64_t k0, std::uint64_t k1) {
+            auto it = std::lower_bound(left_.begin(), left_.end(), Keyed{k0, 0});
+            for (; it != left_.end() && it->key <= k1; ++it) f(it->point);
+        };
+        const std::uint64_t k0 = key_of(x, y, z0), k1 = key_of(x, y, z1);
+        if (k0 <= k1) {
+            range(k0, k1);
+        } else {
+            range(k0, key_of(x, y, kMask));
+            range(key_of(x, y, 0), k1);
+        }
+    }
+
+  private:
+    static constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
+    static std::uint64_t key_of(std::int64_t x, std::int64_t y, std::int64_t z) {
+        return (static_cast<std::uint64_t>(x) & kMask) << 42 |
+               (static_cast<std::uint64_t>(y) & kMask) << 21 |
+               (static_cast<std::uint64_t>(z) & kMask);
+    }
+    struct Keyed {
+        std::uint64_t key;
+        std::uint32_t point;
+        bool operator<(const Keyed& o) const {
+            return key < o.key || (key == o.key && point < o.point);
+        }
+    };
+    double side_;
+    std::vector<Keyed> left_;
+};
 }  // namespace
 
 std::uint64_t grow_strips(const GrowContext& ctx, std::span<const Slab> slabs, int threads,
@@ -36,38 +95,11 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::span<const Slab> slabs, i
         radii.push_back(radius);
         radii2.push_back(static_cast<float>(radius * radius));
     }
-    // The leftovers (a few per mille of the points) bucketed in cells 2 mu wide, keyed x, y, z
-    // (21 bits each, wrapping): a home gathers them ring of cells by ring as its balls grow, so a
-    // search that ends at its first balls (most do) visits only the leftovers near it.
+    // The leftovers bucketed in cells 2 mu wide: a home gathers them ring of cells by ring as its
+    // balls grow, so a search that ends at its first balls (most do) visits only the leftovers
+    // near it.
     const double cell = 2 * cfg.mu;
-    using Cell = std::array<std::int64_t, 3>;
-    auto cell_of = [&](const Vec3f& p) {
-        Cell c;
-        for (int a = 0; a < 3; ++a)
-            c[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(
-                std::clamp(std::floor(static_cast<double>(p[a]) / cell), -4e18, 4e18));
-        return c;
-    };
-    constexpr std::uint64_t kMask = (std::uint64_t{1} << 21) - 1;
-    auto key_of = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-        return (static_cast<std::uint64_t>(x) & kMask) << 42 |
-               (static_cast<std::uint64_t>(y) & kMask) << 21 |
-               (static_cast<std::uint64_t>(z) & kMask);
-    };
-    struct Keyed {
-        std::uint64_t key;
-        std::uint32_t point;
-        bool operator<(const Keyed& o) const {
-            return key < o.key || (key == o.key && point < o.point);
-        }
-    };
-    std::vector<Keyed> left;
-    for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(index.size()); ++i)
-        if (labels[i] < 0) {
-            const Cell c = cell_of(index.local_point(i));
-            left.push_back({key_of(c[0], c[1], c[2]), i});
-        }
-    std::sort(left.begin(), left.end());
+    const LeftoverCells left(index, labels, cell);
     // The smallest ball that holds a point at squared distance d2; radii.size(): none (beyond the
     // largest ball it counts for nothing).
     auto ball_of = [&](float d2) {
@@ -110,29 +142,16 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::span<const Slab> slabs, i
             if (labels[home] >= 0 || tried[home])
                 continue;  // registered, or near a home that failed
             const Vec3f h = index.local_point(home);
-            const Cell c = cell_of(h);
+            const LeftoverCells::Cell c = left.cell_of(h);
             for (auto& list : in_ball) list.clear();
-            // The leftovers in cells (x, y, z0 .. z1) into the balls that hold them (z may wrap at
-            // 2^21: then two ranges of keys).
+            // The leftovers in cells (x, y, z0 .. z1) into the balls that hold them.
             auto gather = [&](std::int64_t x, std::int64_t y, std::int64_t z0, std::int64_t z1) {
-                auto range = [&](std::uint64_t k0, std::uint64_t k1) {
-                    auto it = std::lower_bound(left.begin(), left.end(), Keyed{k0, 0});
-                    for (; it != left.end() && it->key <= k1; ++it) {
-                        // The distance first: a point beyond the largest ball is not this home's
-                        // to read.
-                        const std::size_t ball =
-                            ball_of((index.local_point(it->point) - h).squaredNorm());
-                        if (ball < radii.size() && labels[it->point] < 0)
-                            in_ball[ball].push_back(it->point);
-                    }
-                };
-                const std::uint64_t k0 = key_of(x, y, z0), k1 = key_of(x, y, z1);
-                if (k0 <= k1) {
-                    range(k0, k1);
-                } else {
-                    range(k0, key_of(x, y, kMask));
-                    range(key_of(x, y, 0), k1);
-                }
+                left.each_in(x, y, z0, z1, [&](std::uint32_t q) {
+                    // The distance first: a point beyond the largest ball is not this home's to
+                    // read.
+                    const std::size_t ball = ball_of((index.local_point(q) - h).squaredNorm());
+                    if (ball < radii.size() && labels[q] < 0) in_ball[ball].push_back(q);
+                });
             };
             std::int64_t gathered = -1;  // rings gathered so far
             // Ring R of cells around c: the columns new at R whole, the inner columns' two new
@@ -234,6 +253,129 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::span<const Slab> slabs, i
             grown += g.surfaces.size();
         }
     return grown;
+}
+
+std::int64_t extend_strips(const GrowContext& ctx, std::int32_t first_strip,
+                           std::vector<Surface>& surfaces, std::span<const double> tolerance) {
+    const CubeIndex& index = ctx.index;
+    const std::span<std::int32_t> labels = ctx.labels;
+    // A strip reaches from each member as far as the leftover pass reaches beside surfaces, or
+    // as its own ball where that is wider: its ball grew to hold enough of it, so beyond the
+    // sensor's spacing there (a far edge seen at grazing incidence: 25-30 mm between lines).
+    const double cell = kMissRadiusPerMu * ctx.config.mu;
+    const LeftoverCells left(index, labels, cell);
+    // Each strip's plane refitted to all its members, round by round: along a long strip its
+    // normal, fitted to the first ball, leans by a few degrees, which a few ball lengths farther
+    // puts the face outside the tolerance.
+    const auto strips = surfaces.size() - static_cast<std::size_t>(first_strip);
+    std::vector<Moments> moments(strips);
+    std::vector<Vec3d> normal(strips), centre(strips);
+    std::vector<std::uint8_t> grew(strips, 0), extended(strips, 0);
+    auto add = [&](std::uint32_t i) {
+        const auto k = static_cast<std::size_t>(labels[i] - first_strip);
+        moments[k].add(index.world_point(i) -
+                       surfaces[k + static_cast<std::size_t>(first_strip)].home);
+        grew[k] = 1;
+    };
+    auto refit = [&] {
+        for (std::size_t k = 0; k < strips; ++k)
+            if (grew[k]) {
+                const PlaneFit fit = fit_plane(moments[k]);
+                normal[k] = fit.normal;
+                centre[k] = surfaces[k + static_cast<std::size_t>(first_strip)].home + fit.centroid;
+                grew[k] = 0;
+            }
+    };
+    std::vector<std::uint32_t> frontier;
+    for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(index.size()); ++i)
+        if (labels[i] >= first_strip) {
+            frontier.push_back(i);
+            add(i);
+        }
+    struct Offer {
+        std::uint32_t point;
+        double distance;
+        std::int32_t strip;
+        bool operator<(const Offer& o) const {
+            if (point != o.point) return point < o.point;
+            return distance < o.distance || (distance == o.distance && strip < o.strip);
+        }
+    };
+    std::vector<Offer> offers;
+    std::int64_t gained = 0;
+    while (!frontier.empty()) {
+        refit();
+        offers.clear();
+        // The frontier is in index order, so neighbours share a cell: the leftovers around a
+        // strip's cell, still offered to none of its points, are gathered once for them all.
+        std::vector<std::uint32_t> near;
+        std::int32_t near_strip = -1;
+        LeftoverCells::Cell near_cell{};
+        for (const std::uint32_t f : frontier) {
+            const std::int32_t sid = labels[f];
+            const auto k = static_cast<std::size_t>(sid - first_strip);
+            const double step = std::max(cell, surfaces[static_cast<std::size_t>(sid)].radius);
+            const Vec3f p = index.local_point(f);
+            const LeftoverCells::Cell c = left.cell_of(p);
+            if (sid != near_strip || c != near_cell) {
+                near_strip = sid;
+                near_cell = c;
+                near.clear();
+                const auto rings = static_cast<std::int64_t>(std::ceil(step / cell - 1e-9));
+                for (std::int64_t dx = -rings; dx <= rings; ++dx)
+                    for (std::int64_t dy = -rings; dy <= rings; ++dy)
+                        left.each_in(c[0] + dx, c[1] + dy, c[2] - rings, c[2] + rings,
+                                     [&](std::uint32_t q) {
+                                         if (labels[q] < 0) near.push_back(q);
+                                     });
+            }
+            const double tol = tolerance[static_cast<std::size_t>(sid)];
+            const auto step2 = static_cast<float>(step * step);
+            for (std::size_t j = 0; j < near.size();) {
+                const std::uint32_t q = near[j];
+                if ((index.local_point(q) - p).squaredNorm() > step2) {
+                    ++j;
+                    continue;
+                }
+                const double d = std::abs(normal[k].dot(index.world_point(q) - centre[k]));
+                if (d <= tol) offers.push_back({q, d, sid});
+                near[j] = near.back();  // judged for this strip: no other of its points asks again
+                near.pop_back();
+            }
+        }
+        // Each point to the strip it fits best (ties by number), all at once: the same for any
+        // order of the frontier.
+        std::sort(offers.begin(), offers.end());
+        frontier.clear();
+        for (std::size_t k = 0; k < offers.size(); ++k)
+            if (k == 0 || offers[k].point != offers[k - 1].point) {
+                labels[offers[k].point] = offers[k].strip;
+                frontier.push_back(offers[k].point);
+                add(offers[k].point);
+                extended[static_cast<std::size_t>(offers[k].strip - first_strip)] = 1;
+            }
+        gained += static_cast<std::int64_t>(frontier.size());
+    }
+    // A strip that reached farther takes the plane of all its members (as pooling refines a
+    // disk's normal), and keeps those within its tolerance of it: every member of a surface lies
+    // within its tolerance of its plane.
+    for (std::size_t k = 0; k < strips; ++k)
+        if (extended[k]) {
+            Surface& strip = surfaces[k + static_cast<std::size_t>(first_strip)];
+            strip.normal = normal[k];
+            strip.centroid = centre[k];
+        }
+    for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(index.size()); ++i) {
+        if (labels[i] < first_strip || !extended[static_cast<std::size_t>(labels[i] - first_strip)])
+            continue;
+        const auto sid = static_cast<std::size_t>(labels[i]);
+        const Surface& strip = surfaces[sid];
+        if (std::abs(strip.normal.dot(index.world_point(i) - strip.centroid)) > tolerance[sid]) {
+            labels[i] = -1;
+            --gained;  // a member before, or taken by a round
+        }
+    }
+    return gained;
 }
 
 }  // namespace surfgrow::detail

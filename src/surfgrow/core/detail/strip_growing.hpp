@@ -26,4 +26,19 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::span<const Slab> slabs, i
                           std::vector<Surface>& surfaces, std::vector<std::uint32_t>& home_of,
                           std::vector<double>& tolerance);
 
+/// Stage 3b, last (after the leftover pass over the strips): a strip's plane holds along its face
+/// beyond the leftover pass's reach. A flange's edge far from the sensor is two or three scan
+/// lines, which no ball there reads as a plane, yet the strip grown nearer lies in its plane.
+/// Round by round, each leftover within reach of a point a strip took in the round before (in
+/// the first, of any of its members) and within the strip's tolerance of its plane joins the
+/// strip it fits best (ties by number); rounds end when one takes none. The reach is
+/// kMissRadiusPerMu mu, or the strip's radius where larger (its ball grew to hold enough points:
+/// beyond the sensor's spacing there). Each round judges against each strip's plane refitted to
+/// all its members so far (along a long strip its first ball's normal leans by degrees); a strip
+/// that reached farther keeps that plane, and its members beyond its tolerance of it are left
+/// out. Strips are surfaces `first_strip` on. Serial and in point order: the same for any thread
+/// count. Returns the strips' members gained (less those left out).
+std::int64_t extend_strips(const GrowContext& ctx, std::int32_t first_strip,
+                           std::vector<Surface>& surfaces, std::span<const double> tolerance);
+
 }  // namespace surfgrow::detail
