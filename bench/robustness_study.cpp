@@ -50,7 +50,11 @@ PointCloud scan(const scanner::Scene& scene, double offset_m, int poses, std::ui
     const int count = poses == 1 ? 3 : poses;
     for (auto& s : sim.simulate(scanner::scan_poses(scene.description().scanner, count), seed))
         raws.push_back(std::move(s.raw));
-    if (poses == 1) return scanner::fuse_scans(std::span<const scanner::RawScan>(&raws[1], 1));
+    // STUDY_SINGLE=k: the single rows from scan k of the three instead (0, 1 or 2).
+    std::size_t single = 1;
+    if (const char* k = std::getenv("STUDY_SINGLE"))
+        single = std::min<std::size_t>(2, std::strtoul(k, nullptr, 10));
+    if (poses == 1) return scanner::fuse_scans(std::span<const scanner::RawScan>(&raws[single], 1));
     for (std::size_t k = 0; k < raws.size(); ++k)
         raws[k].pose = scanner::perturb_pose(raws[k].pose, 0.002, scanner::deg_to_rad(0.1),
                                              mix_seed(pose_seed, k));
@@ -126,7 +130,11 @@ int main(int argc, char** argv) {
         };
         for (const double offset : {0.0, 0.040}) {
             for (const int poses : {1, fused_poses}) {
-                const PointCloud cloud = scan(scene, offset, poses, 1);
+                const PointCloud cloud =
+                    scan(scene, offset, poses,
+                         std::getenv("STUDY_NOISE_SEED")
+                             ? std::strtoull(std::getenv("STUDY_NOISE_SEED"), nullptr, 10)
+                             : 1);
                 const Stopwatch watch;
                 const GrowResult r = grow_surfaces(cloud, config);
                 const double secs = watch.seconds();

@@ -74,15 +74,15 @@ struct Attack {
     PointCloud single, fused;
 };
 
-// The scans of `poses` poses along the scene's scan path, seed 1, the optical centre `offset_m`
-// above the tilt axis.
+// The scans of `poses` poses along the scene's scan path, noise drawn from `seed`, the optical
+// centre `offset_m` above the tilt axis.
 std::vector<scanner::RawScan> simulate_scans(const scanner::Scene& scene, double offset_m,
-                                             int poses) {
+                                             int poses, std::uint64_t seed = 1) {
     scanner::ScannerSpec spec;
     spec.optical_offset_m = Vec3d(0, 0, offset_m);
     std::vector<scanner::RawScan> raws;
     for (auto& sim : scanner::ScanSimulator(scene, spec)
-                         .simulate(scanner::scan_poses(scene.description().scanner, poses), 1))
+                         .simulate(scanner::scan_poses(scene.description().scanner, poses), seed))
         raws.push_back(std::move(sim.raw));
     return raws;
 }
@@ -122,8 +122,8 @@ constexpr double kMinFacesDetected = 0.9;  // SegComp correct detection, T = 0.8
 // pose draw since the edge pass; over other draws, see ChannelPoseDraws); and narrow faces (the
 // flange edges, a bolt head, the corridor's 10 mm shelf edge, the pipes' valve top in the plane of
 // a pipe's crown), whose planes hold 14-26 % points of no face or of the pipe. Single scans meet
-// the > 45 degree bound everywhere since mixed-pixel ramps are dropped (0.21-0.29 % on the
-// channel).
+// the > 45 degree bound on every scene since mixed-pixel ramps are dropped (0.22-0.29 % on the
+// channel), on this noise draw; the channel's end poses on other draws: ChannelEndPoses.
 struct Held {
     double fused_over_45 = kMaxShareOver45;  // one scan: always kMaxShareOver45
     double faces = kMinFacesDetected;
@@ -258,6 +258,49 @@ TEST(BuiltinSceneIBeam, FourFusedPosesHeldToTheirMeasuredGap) {
         EXPECT_LE(r.planes.over_45, kFourPosesPlanesOver45) << offset;
     }
 }
+
+// The channel's end poses. The scans above are the middle one of three; from either end the
+// stiffener nearest the scanner is seen head-on, 0.75 m away, and its 12 mm end face is a strip
+// no wider than the range noise along its normal: patches on it fit across it, and the bound
+// planes take their normal (docs/algorithm.md, "What the disk test does not reach yet"). Over
+// noise draws 1, 2, 3 and 11 the end scans are 0.37-0.62 % > 45 degrees off, the bound planes
+// 0.37-0.62 %, and their worst band registers 98.6-99.98 %; on the tests' draw (1) 0.37-0.43 %.
+// Held there, on draws 2 and 3 (the worst).
+class ChannelEndPoses : public ::testing::TestWithParam<std::uint64_t> {};
+constexpr double kEndPosesOver45 = 0.007;
+constexpr double kEndPosesBand = 0.98;
+
+TEST_P(ChannelEndPoses, SingleScansHeldToTheirMeasuredGap) {
+    SURFGROW_SKIP_UNDER_SANITIZERS();
+    const std::uint64_t seed = GetParam();
+    const scanner::Scene scene(scanner::builtin_scene("ibeam-channel"));
+    for (const double offset : {0.0, 0.040}) {
+        const std::vector<scanner::RawScan> raws = simulate_scans(scene, offset, 3, seed);
+        for (const std::size_t k : {std::size_t{0}, std::size_t{2}}) {
+            SCOPED_TRACE(testing::Message()
+                         << "noise draw " << seed << ", offset " << offset << " m, scan " << k);
+            const PointCloud one = scanner::fuse_scans(std::span(&raws[k], 1));
+            const EvalReport r =
+                grow_and_evaluate(one, scene, "ibeam-channel end pose", GrowerConfig{}).report;
+            EXPECT_GE(r.planar.fraction(), kMinRegistered);
+            for (const BandReport& b : r.bands) {
+                if (b.planar.points < 1000) continue;
+                EXPECT_GE(b.planar.fraction(), kEndPosesBand) << b.from_m << "-" << b.to_m << " m";
+            }
+            EXPECT_LE(r.normal_deg.p95, kMaxPatchP95);
+            EXPECT_LE(r.normal_over_45, kEndPosesOver45);
+            ASSERT_TRUE(r.planes.known);
+            EXPECT_LE(r.planes.normal_deg.p95, kMaxPlaneP95);
+            EXPECT_LE(r.planes.over_45, kEndPosesOver45);
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(BuiltinSceneIBeam, ChannelEndPoses,
+                         ::testing::Values(std::uint64_t{2}, std::uint64_t{3}),
+                         [](const auto& param_info) {
+                             return "noise_draw_" + std::to_string(param_info.param);
+                         });
 
 TEST(BuiltinSceneIBeam, TheFlangesInnerEdgesGetSurfacesFacingTheirWay) {
     // The top flanges' inner edges: strips about 25 mm wide facing the channel, between the deck's
