@@ -66,6 +66,9 @@ PointCloud scan(const scanner::Scene& scene, double offset_m, int poses, std::ui
 int main(int argc, char** argv) {
     GrowerConfig config;
     std::vector<std::string> scenes = scanner::builtin_scene_names();
+    // STUDY_NOISE_SEED=S: the scans' noise from seed S instead of 1 (the tests' draw).
+    const char* noise_env = std::getenv("STUDY_NOISE_SEED");
+    const std::uint64_t noise_seed = noise_env ? std::strtoull(noise_env, nullptr, 10) : 1;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
         const char* next = a + 1 < argc ? argv[a + 1] : "0";
@@ -130,11 +133,7 @@ int main(int argc, char** argv) {
         };
         for (const double offset : {0.0, 0.040}) {
             for (const int poses : {1, fused_poses}) {
-                const PointCloud cloud =
-                    scan(scene, offset, poses,
-                         std::getenv("STUDY_NOISE_SEED")
-                             ? std::strtoull(std::getenv("STUDY_NOISE_SEED"), nullptr, 10)
-                             : 1);
+                const PointCloud cloud = scan(scene, offset, poses, noise_seed);
                 const Stopwatch watch;
                 const GrowResult r = grow_surfaces(cloud, config);
                 const double secs = watch.seconds();

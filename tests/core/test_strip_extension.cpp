@@ -73,23 +73,44 @@ Scene edge_scene(std::uint32_t seed) {
     return s;
 }
 
+// The scene as the grower's stages see it: indexed at mu = 12 mm, its labels in the index's
+// order (each input label through `relabel`), no sensor and no noise profile.
+struct Indexed {
+    static constexpr double kMu = 0.012;
+    Indexed(const Scene& s, std::int32_t (*relabel)(std::int32_t))
+        : index(s.points, kMu, {}, 1),
+          n(static_cast<std::uint32_t>(index.size())),
+          orig(index.original_indices()),
+          labels(n + CubeIndex::kPadding, -1),
+          distance(n, 0.f) {
+        cfg.mu = kMu;
+        for (std::uint32_t i = 0; i < n; ++i) labels[i] = relabel(s.grown[orig[i]]);
+    }
+    [[nodiscard]] detail::GrowContext context() {
+        return {index, cfg,   std::span<std::int32_t>(labels.data(), n), distance, sight,
+                noise, layers};
+    }
+
+    GrowerConfig cfg;
+    CubeIndex index;
+    std::uint32_t n;
+    std::span<const std::uint32_t> orig;
+    std::vector<std::int32_t> labels;
+    std::vector<float> distance;
+    detail::SensorSight sight;
+    NoiseProfile noise, layers;
+};
+
 TEST(StripExtension, AStripReachesAlongItsFaceToItsFarEndAndNoFurther) {
     for (std::uint32_t seed = 1; seed <= 5; ++seed) {
         Scene s = edge_scene(seed);
-        GrowerConfig cfg;
-        cfg.mu = 0.012;
-        const CubeIndex index(s.points, cfg.mu, {}, 1);
-        const auto n = static_cast<std::uint32_t>(index.size());
+        Indexed x(s, [](std::int32_t l) { return l; });
+        const CubeIndex& index = x.index;
+        const std::uint32_t n = x.n;
+        const auto orig = x.orig;
+        const std::vector<std::int32_t>& labels = x.labels;
         ASSERT_EQ(n, s.points.size());
-        std::vector<std::int32_t> labels(n + CubeIndex::kPadding, -1);
-        const auto orig = index.original_indices();
-        for (std::uint32_t i = 0; i < n; ++i) labels[i] = s.grown[orig[i]];
-        std::vector<float> distance(n, 0.f);
-        const detail::SensorSight sight;
-        const NoiseProfile noise, layers;
-        const detail::GrowContext ctx{
-            index, cfg, std::span<std::int32_t>(labels.data(), n), distance, sight, noise, layers};
-        const std::int64_t gained = detail::extend_strips(ctx, 1, s.surfaces, s.tolerance);
+        const std::int64_t gained = detail::extend_strips(x.context(), 1, s.surfaces, s.tolerance);
 
         const Surface& strip = s.surfaces[1];
         // The plane of its members: the face's. Its lean about z (3 degrees) is gone: half a metre
@@ -133,23 +154,13 @@ TEST(StripExtension, AStripReachesAlongItsFaceToItsFarEndAndNoFurther) {
 
 TEST(StripExtension, NoStripsNoChange) {
     Scene s = edge_scene(1);
-    GrowerConfig cfg;
-    cfg.mu = 0.012;
-    const CubeIndex index(s.points, cfg.mu, {}, 1);
-    const auto n = static_cast<std::uint32_t>(index.size());
-    std::vector<std::int32_t> labels(n + CubeIndex::kPadding, -1);
-    const auto orig = index.original_indices();
-    for (std::uint32_t i = 0; i < n; ++i) labels[i] = s.grown[orig[i]] == 1 ? 0 : s.grown[orig[i]];
-    const std::vector<std::int32_t> before(labels.begin(), labels.begin() + n);
-    std::vector<float> distance(n, 0.f);
-    const detail::SensorSight sight;
-    const NoiseProfile noise, layers;
-    const detail::GrowContext ctx{
-        index, cfg, std::span<std::int32_t>(labels.data(), n), distance, sight, noise, layers};
+    // The strip's members as the floor's: no surface from 1 on.
+    Indexed x(s, [](std::int32_t l) { return l == 1 ? 0 : l; });
+    const std::vector<std::int32_t> before = x.labels;
     s.surfaces.resize(1);  // the floor alone: first_strip 1 names none
     s.tolerance.resize(1);
-    EXPECT_EQ(detail::extend_strips(ctx, 1, s.surfaces, s.tolerance), 0);
-    EXPECT_TRUE(std::equal(before.begin(), before.end(), labels.begin()));
+    EXPECT_EQ(detail::extend_strips(x.context(), 1, s.surfaces, s.tolerance), 0);
+    EXPECT_EQ(x.labels, before);
 }
 
 }  // namespace
