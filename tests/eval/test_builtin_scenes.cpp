@@ -206,7 +206,8 @@ TEST_P(ChannelPoseDraws, FusedScansRegisterEveryRangeBandWhateverThePoseErrorsDr
     // draw 5 one scan's layer of a top flange's underside lies 9 mm off the others' (3.9 sigmas
     // of the measured offsets), and when 3 sigmas were the limit its 1.5-2 m band kept 97.8 %.
     // Draws 1-5 (the tests above use draw 7); the > 45 degree share must stay within its bound
-    // meanwhile: 0.34-0.51 % over draws 1-7 since the edge pass (0.42-0.68 % before), so 0.6 %
+    // meanwhile: 0.34-0.51 % over draws 1-7 since the edge pass (0.42-0.68 % before; 0.36-0.51 %
+    // since thick fused balls are judged within their layers), so 0.6 %
     // here, where the tests' draw meets the 0.5 %.
     SURFGROW_SKIP_UNDER_SANITIZERS();
     const std::string name = "ibeam-channel";
@@ -232,6 +233,44 @@ TEST_P(ChannelPoseDraws, FusedScansRegisterEveryRangeBandWhateverThePoseErrorsDr
 INSTANTIATE_TEST_SUITE_P(BuiltinSceneIBeam, ChannelPoseDraws, ::testing::Values(0.0, 0.040),
                          [](const auto& param_info) {
                              return std::string(param_info.param > 0 ? "offset_40mm" : "offset_0");
+                         });
+
+// The fused scans above are the tests' noise draw (1). Each draw also draws every scan's range
+// bias for every face, and on draws 3 and 5 the scaffold floor's layers, 3-3.3 m away and seen at
+// 60-70 degrees, lie 15-20 mm apart along its normal: each ball there was thick, and the floor's
+// far band kept 96.3 % (draw 3, 40 mm) and 97.4 % (draw 5, offset 0) of its points, 36-53 degrees
+// p95. Balls too thick for the noise are judged within their scans' layers since 2026-12-07
+// (docs/algorithm.md, "A thick ball is judged within its scans' layers"): 98.8 % and 99.2 %.
+// Held at 98.5 %: on draw 3 at 40 mm 104 floor points stay out, scattered; on draw 6 (not
+// here) the top flanges' edges hold the 1.5-2 m band at 98.7 %.
+class ChannelNoiseDraws : public ::testing::TestWithParam<std::uint64_t> {};
+constexpr double kNoiseDrawsBand = 0.985;
+
+TEST_P(ChannelNoiseDraws, FusedScansRegisterTheFarFloorWhateverTheRangeBiasesDraw) {
+    SURFGROW_SKIP_UNDER_SANITIZERS();
+    const std::uint64_t seed = GetParam();
+    const scanner::Scene scene(scanner::builtin_scene("ibeam-channel"));
+    for (const double offset : {0.0, 0.040}) {
+        SCOPED_TRACE(testing::Message() << "noise draw " << seed << ", offset " << offset << " m");
+        const PointCloud fused = fuse_with_pose_errors(simulate_scans(scene, offset, 3, seed), 7);
+        const EvalReport r =
+            grow_and_evaluate(fused, scene, "ibeam-channel fused", GrowerConfig{}).report;
+        EXPECT_GE(r.planar.fraction(), kMinRegistered);
+        for (const BandReport& b : r.bands) {
+            if (b.planar.points < 1000) continue;
+            EXPECT_GE(b.planar.fraction(), kNoiseDrawsBand) << b.from_m << "-" << b.to_m << " m";
+        }
+        EXPECT_LE(r.normal_deg.p95, kMaxPatchP95);
+        EXPECT_LE(r.normal_over_45, kDrawsMaxShareOver45);
+        ASSERT_TRUE(r.planes.known);
+        EXPECT_LE(r.planes.normal_deg.p95, kMaxPlaneP95);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(BuiltinSceneIBeam, ChannelNoiseDraws,
+                         ::testing::Values(std::uint64_t{3}, std::uint64_t{5}),
+                         [](const auto& param_info) {
+                             return "noise_draw_" + std::to_string(param_info.param);
                          });
 
 TEST(BuiltinSceneIBeam, FourFusedPosesHeldToTheirMeasuredGap) {

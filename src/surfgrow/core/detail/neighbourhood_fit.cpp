@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
+
+#include "surfgrow/core/detail/neighbourhood.hpp"
 
 namespace surfgrow::detail {
 
@@ -102,6 +105,40 @@ bool check_and_refit(const GrowContext& ctx, std::uint32_t home, const Vec3f& h,
     return true;
 }
 
+/// A fused cloud's ball is a stack of its scans' layers: each scan sees a surface a little off
+/// the others along its rays (its range bias there, its pose error), and across a sparse ball
+/// those offsets outweigh the noise. Fits the plane within the layers: the scatter of each scan's
+/// points about their own mean, summed, so that the offsets between layers drop out, through the
+/// centroid of all the points. False where the ball holds fewer than two scans.
+bool fit_within_layers(const GrowContext& ctx, const Vec3f& h, const Neighbourhood& nb,
+                       PlaneFit& out) {
+    // Per scan, reset after each ball for the scans it touched only (a cloud may fuse hundreds).
+    thread_local std::vector<Moments> per_scan;
+    thread_local std::vector<std::uint32_t> touched;
+    if (per_scan.size() < ctx.sight.origins.size()) per_scan.resize(ctx.sight.origins.size());
+    touched.clear();
+    const auto r = static_cast<float>(nb.radius);
+    for_each_in_runs_within(ctx.index, nb.runs, h, r * r, [&](std::uint32_t j) {
+        const std::uint32_t s = ctx.sight.scan_of(j);
+        if (s >= ctx.sight.origins.size()) return;
+        if (per_scan[s].n == 0) touched.push_back(s);
+        per_scan[s].add((ctx.index.local_point(j) - h).cast<double>());
+    });
+    // In scan order: the same sums for any order the points came in.
+    std::sort(touched.begin(), touched.end());
+    Moments within;  // about the origin of the summed scatter: only its covariance is used
+    for (const std::uint32_t s : touched) {
+        Moments& m = per_scan[s];
+        within.n += m.n;
+        within.sum_sq += m.sum_sq - m.sum * m.sum.transpose() / m.n;
+        m = Moments{};
+    }
+    if (touched.size() < 2 || within.n != nb.moments.n) return false;
+    out = fit_plane(within);
+    out.centroid = nb.moments.sum / nb.moments.n;
+    return true;
+}
+
 }  // namespace
 
 /// The registration tolerance of an accepted neighbourhood: the user's, per mu of radius; or a few
@@ -149,6 +186,21 @@ Neighbourhood fit_neighbourhood(const GrowContext& ctx, std::uint32_t home, cons
             // Most edge and clutter neighbourhoods fail eq. (2) plainly: the cubic's eigenvalues
             // say so at a third of the full solve's cost.
             const Vec3d rough = rough_eigenvalues(covariance(m));
+            // In a fused cloud, a ball thicker than growing allows is judged first within its
+            // scans' layers, by the same tests: an edge, a step or a corner is as thick within
+            // each layer, layers offset along their rays are not. Where that is a plane, the
+            // ball takes the layers' normal.
+            PlaneFit layered;
+            if (disk && ctx.sight.fused() && rough[0] > grow_var &&
+                fit_within_layers(ctx, h, nb, layered) && layered.eigenvalues[0] <= max_var &&
+                judge_plane(cfg.plane_test, test, layered.eigenvalues, layered.normal, nb.radius,
+                            sight) == PlaneVerdict::kPlane) {
+                nb.fit = layered;
+                nb.verdict = PlaneVerdict::kPlane;
+                nb.tolerance = tolerance_of(ctx, nb);
+                if (!check_and_refit(ctx, home, h, nb)) nb.verdict = PlaneVerdict::kKinked;
+                return nb;
+            }
             if (clearly_not_planar(rough, cfg.alpha)) {
                 nb.verdict = PlaneVerdict::kThick;
                 // Only a full disk as thick as the noise thins out in a larger ball; a thicker
