@@ -8,7 +8,9 @@
 // Where the tail lies, by environment variable: STUDY_TIMES (stages and counters), STUDY_NOISE
 // (the noise and layer profiles), STUDY_BANDS (by range band and incidence), STUDY_KINDS (how the
 // points > 45 deg off went wrong; with STUDY_MIXED, the surfaces mostly of mixed pixels),
-// STUDY_MISSED (each face not detected, and the bound planes that hold it), STUDY_FACES (by face;
+// STUDY_MISSED (each face not detected, and the bound planes that hold it), STUDY_PLANE_ERR (the
+// bound planes more than 2 degrees off their face; STUDY_PLANE_PATCHES: their patches of other
+// faces), STUDY_NO_BRIDGE (bound planes without gap bridging), STUDY_FACES (by face;
 // with STUDY_SURFACES the worst surfaces, STUDY_AT=x,y,z the points near a spot,
 // STUDY_UNREG_FACE=id a face's unregistered points, STUDY_DUMP=id a surface's ball).
 #include <algorithm>
@@ -140,6 +142,7 @@ int main(int argc, char** argv) {
                 eval::EvalReport e = eval::evaluate(cloud, r, scene.faces());
                 BoundPlaneConfig pc;
                 pc.mu = config.mu;
+                if (std::getenv("STUDY_NO_BRIDGE")) pc.max_gap = -1;
                 const BoundPlanes planes = compute_bound_planes(cloud, r, pc);
                 eval::add_plane_figures(e, cloud, eval::GrowOutcome{r.surfaces, r.labels, &r.stats},
                                         planes, scene.faces());
@@ -166,6 +169,64 @@ int main(int argc, char** argv) {
                         static_cast<unsigned long long>(r.stats.adapted_surfaces),
                         static_cast<unsigned long long>(r.stats.surfaces),
                         static_cast<unsigned long long>(r.stats.lone_surfaces));
+                if (std::getenv("STUDY_PLANE_ERR")) {
+                    // Each bound plane of over 500 points more than 2 degrees off the face most of
+                    // its points lie on: the faces it holds; with STUDY_PLANE_PATCHES, its patches
+                    // whose points lie mostly elsewhere.
+                    const std::vector<std::int32_t> pl = plane_labels(planes, r.labels);
+                    std::map<std::int32_t, std::map<std::int32_t, std::uint64_t>> by_plane,
+                        by_patch;
+                    // (plane, face) -> the sum of their common points: the face's mean there.
+                    std::map<std::int64_t, Vec3d> sum;
+                    for (std::size_t i = 0; i < cloud.size(); ++i) {
+                        if (pl[i] < 0) continue;
+                        ++by_plane[pl[i]][cloud.labels[i]];
+                        ++by_patch[r.labels[i]][cloud.labels[i]];
+                        const std::int64_t key = std::int64_t{pl[i]} * 65536 + cloud.labels[i];
+                        sum.try_emplace(key, Vec3d::Zero()).first->second +=
+                            cloud.points[i].cast<double>();
+                    }
+                    const auto majority = [](const std::map<std::int32_t, std::uint64_t>& c) {
+                        std::pair<std::int32_t, std::uint64_t> top{-1, 0};
+                        for (auto [f, k] : c)
+                            if (f >= 0 && k > top.second) top = {f, k};
+                        return top;
+                    };
+                    for (auto& [q, c] : by_plane) {
+                        const auto [face, top] = majority(c);
+                        std::uint64_t total = 0;
+                        for (auto [f, k] : c) total += k;
+                        if (face < 0 || !scene.faces()[std::size_t(face)].planar() || total <= 500)
+                            continue;
+                        const Vec3d o = sum.at(std::int64_t{q} * 65536 + face) / double(top);
+                        const Vec3d truth = scene.normal_at(face, o);
+                        const BoundPlane& bp = planes.planes[std::size_t(q)];
+                        const auto off_deg = [&](const Vec3d& n) {
+                            return std::acos(std::min(1.0, std::abs(truth.dot(n)))) * 180 / M_PI;
+                        };
+                        if (off_deg(bp.normal) <= 2) continue;
+                        std::printf("      plane %d: %llu points, %.2f deg off face %d (%s):", q,
+                                    (unsigned long long)total, off_deg(bp.normal), face,
+                                    face_name(face));
+                        for (auto [f, k] : c)
+                            if (k * 50 > total)
+                                std::printf(" %s %llu", f >= 0 ? face_name(f) : "none",
+                                            (unsigned long long)k);
+                        std::printf("\n");
+                        if (!std::getenv("STUDY_PLANE_PATCHES")) continue;
+                        for (const std::uint32_t sid : bp.patches) {
+                            const auto [pf, pk] = majority(by_patch[std::int32_t(sid)]);
+                            if (pf == face) continue;
+                            const Surface& sf = r.surfaces[sid];
+                            std::printf(
+                                "        patch %u: %u points, %llu of face %d, %.1f deg off, "
+                                "centroid %.1f mm off the face, r %.0f mm, home %.3f %.3f %.3f\n",
+                                sid, sf.point_count, (unsigned long long)pk, pf, off_deg(sf.normal),
+                                1000 * truth.dot(sf.centroid - o), 1000 * sf.radius, sf.home.x(),
+                                sf.home.y(), sf.home.z());
+                        }
+                    }
+                }
                 if (std::getenv("STUDY_MISSED")) {
                     // Each planar face not correctly detected: the bound planes holding its
                     // points, with their share of the face and of their own points on it.
