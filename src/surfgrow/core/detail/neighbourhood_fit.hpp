@@ -20,7 +20,9 @@ double tolerance_of(const GrowContext& ctx, const Neighbourhood& nb);
 /// the radius doubles while the neighbourhood fails the relative tests (too few points, eq. (2),
 /// spread, grazing), and the search stops at once where the neighbourhood is thicker than
 /// `thickness_sigmas` noise sigmas at its range (an edge, a step, a corner: growing cannot help).
-/// Without a known noise profile that limit is not applied (the profile's own sampling).
+/// Without a known noise profile that limit is not applied (the profile's own sampling). In a fused
+/// cloud a ball thicker than growing allows is judged first within its scans' layers (each scan's
+/// points about their own mean), and takes the layers' plane where that passes.
 Neighbourhood fit_neighbourhood(const GrowContext& ctx, std::uint32_t home, const Vec3f& h,
                                 std::uint32_t cube, std::span<const Range> runs27,
                                 std::vector<Range>& wide_runs);
