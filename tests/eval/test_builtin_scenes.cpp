@@ -115,6 +115,19 @@ constexpr double kMaxPlaneP95 = 2.0;       // the same through the bound planes
 constexpr double kMaxShareOver45 = 0.005;  // points more than 45 degrees off
 constexpr double kMinFacesDetected = 0.9;  // SegComp correct detection, T = 0.8
 
+// Every range band that holds at least 1000 planar points registers at least `bound` of them.
+void expect_bands_at_least(const EvalReport& r, double bound) {
+    for (const BandReport& b : r.bands) {
+        if (b.planar.points < 1000) continue;
+        EXPECT_GE(b.planar.fraction(), bound) << b.from_m << "-" << b.to_m << " m";
+    }
+}
+
+// Test names for suites over noise draws.
+std::string noise_draw_name(const ::testing::TestParamInfo<std::uint64_t>& info) {
+    return "noise_draw_" + std::to_string(info.param);
+}
+
 // Where the defaults do not reach those bounds yet, the bound this scene is held to instead (the
 // gaps are in docs/algorithm.md, "What the disk test does not reach yet"): on the pipes' fused
 // scans, mixed-pixel veils between a pipe and the wall behind it and the strips where the
@@ -145,11 +158,7 @@ void expect_bounds(const Grown& g, const std::string& scene, bool fused) {
     const EvalReport& r = g.report;
     const Held held = held_to(scene);
     EXPECT_GE(r.planar.fraction(), kMinRegistered);
-    // Every range band that holds at least 1000 planar points.
-    for (const BandReport& b : r.bands) {
-        if (b.planar.points < 1000) continue;
-        EXPECT_GE(b.planar.fraction(), kMinRegistered) << b.from_m << "-" << b.to_m << " m";
-    }
+    expect_bands_at_least(r, kMinRegistered);
     EXPECT_LE(r.normal_deg.p95, kMaxPatchP95);
     const double over_45 = fused ? held.fused_over_45 : kMaxShareOver45;
     EXPECT_LE(r.normal_over_45, over_45);
@@ -222,12 +231,9 @@ TEST_P(ChannelPoseDraws, FusedScansRegisterEveryRangeBandWhateverThePoseErrorsDr
         std::cout << "offset " << offset * 1000 << " mm, pose draw " << draw << ": " << eval_line(e)
                   << "\n"
                   << bands_line(e) << "\n";
-        for (const BandReport& b : e.bands) {
-            if (b.planar.points < 1000) continue;
-            EXPECT_GE(b.planar.fraction(), kMinRegistered)
-                << "draw " << draw << ", " << b.from_m << "-" << b.to_m << " m";
-        }
-        EXPECT_LE(e.normal_over_45, kDrawsMaxShareOver45) << "draw " << draw;
+        SCOPED_TRACE(testing::Message() << "pose draw " << draw);
+        expect_bands_at_least(e, kMinRegistered);
+        EXPECT_LE(e.normal_over_45, kDrawsMaxShareOver45);
     }
 }
 
@@ -257,10 +263,7 @@ TEST_P(ChannelNoiseDraws, FusedScansRegisterTheFarFloorWhateverTheRangeBiasesDra
         const EvalReport r =
             grow_and_evaluate(fused, scene, "ibeam-channel fused", GrowerConfig{}).report;
         EXPECT_GE(r.planar.fraction(), kMinRegistered);
-        for (const BandReport& b : r.bands) {
-            if (b.planar.points < 1000) continue;
-            EXPECT_GE(b.planar.fraction(), kNoiseDrawsBand) << b.from_m << "-" << b.to_m << " m";
-        }
+        expect_bands_at_least(r, kNoiseDrawsBand);
         EXPECT_LE(r.normal_deg.p95, kMaxPatchP95);
         EXPECT_LE(r.normal_over_45, kDrawsMaxShareOver45);
         ASSERT_TRUE(r.planes.known);
@@ -269,10 +272,7 @@ TEST_P(ChannelNoiseDraws, FusedScansRegisterTheFarFloorWhateverTheRangeBiasesDra
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinSceneIBeam, ChannelNoiseDraws,
-                         ::testing::Values(std::uint64_t{3}, std::uint64_t{5}),
-                         [](const auto& param_info) {
-                             return "noise_draw_" + std::to_string(param_info.param);
-                         });
+                         ::testing::Values(std::uint64_t{3}, std::uint64_t{5}), noise_draw_name);
 
 TEST(BuiltinSceneIBeam, FourFusedPosesHeldToTheirMeasuredGap) {
     // Four poses along the channel (surfgrow scan --poses 4) put the end scans beside the
@@ -288,10 +288,7 @@ TEST(BuiltinSceneIBeam, FourFusedPosesHeldToTheirMeasuredGap) {
         const Grown g = grow_and_evaluate(fused, scene, "ibeam-channel, 4 poses", GrowerConfig{});
         const EvalReport& r = g.report;
         EXPECT_GE(r.planar.fraction(), kMinRegistered) << offset;
-        for (const BandReport& b : r.bands) {
-            if (b.planar.points < 1000) continue;
-            EXPECT_GE(b.planar.fraction(), kMinRegistered) << b.from_m << "-" << b.to_m << " m";
-        }
+        expect_bands_at_least(r, kMinRegistered);
         EXPECT_LE(r.normal_deg.p95, kMaxPatchP95) << offset;
         EXPECT_LE(r.planes.normal_deg.p95, kMaxPlaneP95) << offset;
         EXPECT_LE(r.normal_over_45, kFourPosesOver45) << offset;
@@ -323,10 +320,7 @@ TEST_P(ChannelEndPoses, SingleScansHeldToTheirMeasuredGap) {
             const EvalReport r =
                 grow_and_evaluate(one, scene, "ibeam-channel end pose", GrowerConfig{}).report;
             EXPECT_GE(r.planar.fraction(), kMinRegistered);
-            for (const BandReport& b : r.bands) {
-                if (b.planar.points < 1000) continue;
-                EXPECT_GE(b.planar.fraction(), kEndPosesBand) << b.from_m << "-" << b.to_m << " m";
-            }
+            expect_bands_at_least(r, kEndPosesBand);
             EXPECT_LE(r.normal_deg.p95, kMaxPatchP95);
             EXPECT_LE(r.normal_over_45, kEndPosesOver45);
             ASSERT_TRUE(r.planes.known);
@@ -337,10 +331,7 @@ TEST_P(ChannelEndPoses, SingleScansHeldToTheirMeasuredGap) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltinSceneIBeam, ChannelEndPoses,
-                         ::testing::Values(std::uint64_t{2}, std::uint64_t{3}),
-                         [](const auto& param_info) {
-                             return "noise_draw_" + std::to_string(param_info.param);
-                         });
+                         ::testing::Values(std::uint64_t{2}, std::uint64_t{3}), noise_draw_name);
 
 TEST(BuiltinSceneIBeam, TheFlangesInnerEdgesGetSurfacesFacingTheirWay) {
     // The top flanges' inner edges: strips about 25 mm wide facing the channel, between the deck's
