@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "support/test_support.hpp"
@@ -12,6 +13,7 @@
 #include "surfgrow/eval/evaluation.hpp"
 #include "surfgrow/eval/plane_evaluation.hpp"
 #include "surfgrow/pipeline/map.hpp"
+#include "surfgrow/planes/bound_plane_memo.hpp"
 #include "surfgrow/scanner/builtin_scenes.hpp"
 #include "surfgrow/scanner/fuse.hpp"
 #include "surfgrow/scanner/scan_simulator.hpp"
@@ -110,6 +112,82 @@ TEST_F(MapTest, TheSameForAnyNumberOfThreads) {
                   two.result().grow.surfaces[s].point_count);
     }
     EXPECT_EQ(one.result().planes->plane_of_patch, two.result().planes->plane_of_patch);
+}
+
+void expect_same_planes(const BoundPlanes& a, const BoundPlanes& b) {
+    ASSERT_EQ(a.planes.size(), b.planes.size());
+    EXPECT_EQ(a.plane_of_patch, b.plane_of_patch);
+    EXPECT_EQ(a.stats.adjacent_pairs, b.stats.adjacent_pairs);
+    EXPECT_EQ(a.stats.area, b.stats.area);
+    for (std::size_t k = 0; k < a.planes.size(); ++k) {
+        const BoundPlane &p = a.planes[k], &q = b.planes[k];
+        EXPECT_EQ(p.patches, q.patches) << "plane " << k;
+        EXPECT_TRUE(p.normal == q.normal && p.centroid == q.centroid && p.u_axis == q.u_axis &&
+                    p.area == q.area && p.rms == q.rms && p.degenerate == q.degenerate)
+            << "plane " << k;
+        ASSERT_EQ(p.polygons.size(), q.polygons.size()) << "plane " << k;
+        for (std::size_t i = 0; i < p.polygons.size(); ++i)
+            EXPECT_TRUE(p.polygons[i].outer == q.polygons[i].outer &&
+                        p.polygons[i].holes == q.polygons[i].holes)
+                << "plane " << k;
+    }
+}
+
+void expect_same_coverage(const CoveragePlan& a, const CoveragePlan& b) {
+    ASSERT_EQ(a.goals.size(), b.goals.size());
+    for (std::size_t k = 0; k < a.goals.size(); ++k)
+        EXPECT_TRUE(a.goals[k].plane == b.goals[k].plane &&
+                    a.goals[k].position == b.goals[k].position &&
+                    a.goals[k].tool_position == b.goals[k].tool_position &&
+                    a.goals[k].orientation.coeffs() == b.goals[k].orientation.coeffs())
+            << "goal " << k;
+    ASSERT_EQ(a.per_plane.size(), b.per_plane.size());
+    for (std::size_t k = 0; k < a.per_plane.size(); ++k)
+        EXPECT_EQ(a.per_plane[k].covered_fraction, b.per_plane[k].covered_fraction);
+    EXPECT_EQ(a.stats.tool_path_length, b.stats.tool_path_length);
+}
+
+TEST_F(MapTest, OutputsAfterEachScanAreThoseComputedAnew) {
+    SURFGROW_SKIP_UNDER_SANITIZERS();
+    // The map carries the planes' and coverage's work over to the next scan where the scan left
+    // it as it was (PipelineMemo): after every scan its outputs must be those computed anew, bit
+    // for bit. A memo whose planes and goals are marked shows that it was used.
+    MapConfig c;
+    c.pipeline.occupancy = c.pipeline.collision = false;
+    Map map(c);
+    const Pipeline anew(c.pipeline);
+    PipelineMemo marked;
+    for (std::size_t k = 0; k < scans_->size(); ++k) {
+        const scanner::RawScan& raw = (*scans_)[k];
+        const PointCloud one = scanner::fuse_scans(std::span(&raw, 1));
+        const PipelineResult& r = map.add_scan(one, raw.pose.translation());
+        const PipelineResult truth = anew.finish(map.cloud(), r.grow);
+        SCOPED_TRACE("after scan " + std::to_string(k));
+        expect_same_planes(*r.planes, *truth.planes);
+        expect_same_coverage(*r.coverage, *truth.coverage);
+
+        const PipelineResult recalled = anew.finish(map.cloud(), r.grow, &marked);
+        std::size_t planes = 0, goals = 0;
+        for (const BoundPlane& p : recalled.planes->planes) planes += p.rms < 0;
+        for (const PlaneCoverage& p : recalled.coverage->per_plane) goals += p.covered_fraction < 0;
+        std::printf("after scan %zu: %zu of %zu planes and %zu of %zu planes' goals recalled\n", k,
+                    planes, recalled.planes->planes.size(), goals,
+                    recalled.coverage->per_plane.size());
+        if (k > 0) {  // more as the map grows: after the third scan, 32 of 124
+            EXPECT_GT(planes * (k == 1 ? 20 : 5), recalled.planes->planes.size());
+            EXPECT_GT(goals * (k == 1 ? 20 : 5), recalled.coverage->per_plane.size());
+        }
+        for (FittedRegion& f : marked.planes.regions) f.plane.rms = -1;
+        for (CoverageMemo::Plane& p : marked.coverage.planes) p.goals.covered_fraction = -1;
+    }
+    // The bound planes' memo of other patches (the whole map's, given the first scan's map) is
+    // not used: no marked plane comes out. (Coverage's is keyed by each plane's contents: a
+    // plane the same in both may take its goals.)
+    Map first(c);
+    const scanner::RawScan& raw = (*scans_)[0];
+    const PipelineResult& r0 =
+        first.add_scan(scanner::fuse_scans(std::span(&raw, 1)), raw.pose.translation());
+    expect_same_planes(*anew.finish(first.cloud(), r0.grow, &marked).planes, *r0.planes);
 }
 
 TEST(Map, RefusesWhatItCannotUse) {

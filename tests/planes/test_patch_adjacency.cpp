@@ -2,6 +2,7 @@
 // homes within the sum of their radii, and nothing else, for any thread count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -110,6 +111,56 @@ TEST(PatchAdjacency, EqualsBruteForceForAnyThreadCount) {
                     const Pairs got = adjacent_patch_pairs(members, p.surfaces, reach, threads);
                     EXPECT_EQ(got, truth) << "plate " << thickness << ", seed " << seed
                                           << ", reach " << reach << ", " << threads << " threads";
+                }
+            }
+        }
+    }
+}
+
+std::vector<std::uint64_t> keys_of(const Pairs& pairs) {
+    std::vector<std::uint64_t> keys;
+    for (const auto& [a, b] : pairs) keys.push_back(pair_key(a, b));
+    return keys;
+}
+
+TEST(PatchAdjacency, PairsSoughtWhereMembersChangedEqualBruteForce) {
+    // A map's patches gain members at the end of the cloud: the pairs found before, among the
+    // unchanged patches, stay; only those of a changed patch are sought. A few changed patches
+    // take the search from each of them, most the sweep over every box: both give the truth.
+    for (const std::uint64_t seed : {1u, 2u}) {
+        const Patches after = random_patches(seed, 0.004, Vec3d::Zero());
+        // Every 40th patch new (no members before), or every patch with the second half of its
+        // members new.
+        for (const std::uint32_t every : {40u, 1u}) {
+            Patches before = after;
+            const std::size_t from = every == 1 ? after.points.size() / 2 : 0;
+            for (std::size_t i = from; i < after.points.size(); ++i)
+                if (after.labels[i] >= 0 &&
+                    static_cast<std::uint32_t>(after.labels[i]) % every == 0)
+                    before.labels[i] = -1;
+            const std::size_t ns = after.surfaces.size();
+            for (const double reach : {0.003, 0.015}) {
+                const PatchMembers old = collect_patch_members(before.points, before.labels, ns);
+                const auto known = keys_of(adjacent_patch_pairs(old, before.surfaces, reach, 1));
+                const PatchMembers now = collect_patch_members(after.points, after.labels, ns);
+                std::vector<Aabb> boxes(ns);
+                std::vector<std::uint8_t> changed(ns, 0);
+                for (std::size_t s = 0; s < ns; ++s) {
+                    for (const Vec3f& x : now.points_of(s)) boxes[s].add(x.cast<double>());
+                    changed[s] = now.of(s).size() != old.of(s).size();
+                }
+                const std::size_t count = static_cast<std::size_t>(
+                    std::count(changed.begin(), changed.end(), std::uint8_t{1}));
+                ASSERT_GT(count, 0u);
+                const auto truth = keys_of(brute_force(after, reach));
+                if (every > 1) {
+                    ASSERT_GT(truth.size(), known.size());  // the new patches' pairs
+                }
+                for (const int threads : {1, 3}) {
+                    EXPECT_EQ(adjacent_patch_keys(now, after.surfaces, boxes, changed, known, reach,
+                                                  threads),
+                              truth)
+                        << "seed " << seed << ", " << count << " changed, reach " << reach;
                 }
             }
         }

@@ -156,7 +156,7 @@ const PipelineResult& Map::add_scan(const CloudView& scan, const Vec3d& origin) 
     const Stopwatch outputs_watch;
     GrowResult copy = g;
     const GrowStats keep = st;
-    result_ = pipeline_.finish(cloud_, std::move(copy));
+    result_ = pipeline_.finish(cloud_, std::move(copy), &memo_);
     result_.grow.stats = keep;
     last_.outputs_seconds = outputs_watch.seconds();
     return result_;

@@ -75,6 +75,7 @@ class Map {
     bool labelled_ = true;
     double cell_ = 1.0;  // side of the surface lookup's cells
     std::unordered_map<std::int64_t, std::vector<std::int32_t>> cells_;
+    PipelineMemo memo_;  // surfaces only gain points here: the outputs reuse what they left
 };
 
 }  // namespace surfgrow

@@ -29,19 +29,20 @@ PipelineResult Pipeline::run(const CloudView& cloud) const {
     std::optional<GrowIndex> index = grower.index(cloud);
     GrowResult grown = grower.grow(cloud, *index);
     if (!config_.occupancy) index.reset();
-    return outputs(cloud, std::move(grown), std::move(index));
+    return outputs(cloud, std::move(grown), std::move(index), nullptr);
 }
 
-PipelineResult Pipeline::finish(const CloudView& cloud, GrowResult grown) const {
+PipelineResult Pipeline::finish(const CloudView& cloud, GrowResult grown,
+                                PipelineMemo* memo) const {
     if (grown.labels.size() != cloud.size())
         throw Error(ErrorCode::kInvalidParameter,
                     cat({"pipeline: ", std::to_string(grown.labels.size()), " labels for ",
                          std::to_string(cloud.size()), " points"}));
-    return outputs(cloud, std::move(grown), std::nullopt);  // the occupancy grid indexes it
+    return outputs(cloud, std::move(grown), std::nullopt, memo);  // the occupancy grid indexes it
 }
 
 PipelineResult Pipeline::outputs(const CloudView& cloud, GrowResult grown,
-                                 std::optional<GrowIndex> index) const {
+                                 std::optional<GrowIndex> index, PipelineMemo* memo) const {
     const PipelineConfig& c = config_;
     const auto report = [&](std::string_view stage) {
         if (c.grow.progress) c.grow.progress(stage, 1.0);
@@ -75,12 +76,14 @@ PipelineResult Pipeline::outputs(const CloudView& cloud, GrowResult grown,
         meanwhile = std::async(std::launch::async, occupancy_and_collision);
     if (c.planes) {
         const Stopwatch watch;
-        r.planes = compute_bound_planes(cloud, r.grow.surfaces, r.grow.labels, *c.planes);
+        r.planes = compute_bound_planes(cloud, r.grow.surfaces, r.grow.labels, *c.planes,
+                                        memo ? &memo->planes : nullptr);
         r.seconds.planes = watch.seconds();
         report("planes");
         if (c.coverage) {
             const Stopwatch cover;
-            r.coverage = plan_coverage(*r.planes, r.grow.surfaces, *c.coverage);
+            r.coverage = plan_coverage(*r.planes, r.grow.surfaces, *c.coverage,
+                                       memo ? &memo->coverage : nullptr);
             r.seconds.coverage = cover.seconds();
             report("coverage");
         }

@@ -7,6 +7,7 @@
 #include "surfgrow/core/cloud_view.hpp"
 #include "surfgrow/core/grower_config.hpp"
 #include "surfgrow/core/surface_grower.hpp"
+#include "surfgrow/planes/bound_plane_memo.hpp"
 #include "surfgrow/planes/bound_planes.hpp"
 #include "surfgrow/robot/collision_spheres.hpp"
 #include "surfgrow/robot/coverage.hpp"
@@ -46,6 +47,13 @@ struct PipelineResult {
     PipelineSeconds seconds;
 };
 
+/// What a Pipeline keeps from one finish() to the next on a map, whose surfaces only gain points
+/// (Map): the work of the bound planes and coverage that the new points left as it was.
+struct PipelineMemo {
+    BoundPlaneMemo planes;
+    CoverageMemo coverage;
+};
+
 /// Runs the stages of a PipelineConfig over clouds. The result is the same, byte for byte, for
 /// any number of threads, and the same as calling the stages one by one.
 class Pipeline {
@@ -62,12 +70,14 @@ class Pipeline {
 
     /// Runs the stages after growing over a result grown elsewhere (a Map's): `grown` holds
     /// surfaces and one label per point of `cloud`. Throws Error(kInvalidParameter) when the
-    /// labels do not match the cloud.
-    [[nodiscard]] PipelineResult finish(const CloudView& cloud, GrowResult grown) const;
+    /// labels do not match the cloud. A `memo` carries work from one call to the next where the
+    /// surfaces only gained points (PipelineMemo): the same result, in less time.
+    [[nodiscard]] PipelineResult finish(const CloudView& cloud, GrowResult grown,
+                                        PipelineMemo* memo = nullptr) const;
 
   private:
-    PipelineResult outputs(const CloudView& cloud, GrowResult grown,
-                           std::optional<GrowIndex> index) const;
+    PipelineResult outputs(const CloudView& cloud, GrowResult grown, std::optional<GrowIndex> index,
+                           PipelineMemo* memo) const;
 
     PipelineConfig config_;
 };

@@ -15,6 +15,7 @@
 #include "surfgrow/core/moments.hpp"
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/core/threads.hpp"
+#include "surfgrow/planes/bound_plane_memo.hpp"
 #include "surfgrow/planes/boundary_polygon.hpp"
 #include "surfgrow/planes/detail/region_fit.hpp"
 #include "surfgrow/planes/patch_adjacency.hpp"
@@ -307,26 +308,19 @@ void check_grow_result(const CloudView& cloud, std::span<const Surface> surfaces
     }
 }
 
-// The moments of each patch's member points (accumulated about its home point); `used` marks the
-// patches with members. Returns the median patch thickness sqrt(lambda_min): the cloud's noise.
+// The centred moments of each patch's member points from their sums about its home point;
+// `used` marks the patches with members. Returns the median patch thickness sqrt(lambda_min):
+// the cloud's noise.
 double patch_moments(std::span<const Surface> surfaces, const PatchMembers& members,
-                     std::vector<CentredMoments>& moments, std::vector<std::uint8_t>& used,
-                     int threads) {
-    // Each patch's sums in its members' order, whichever thread: the same bits for any count.
-    const auto ns = static_cast<std::ptrdiff_t>(surfaces.size());
-#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
-    for (std::ptrdiff_t k = 0; k < ns; ++k) {
-        const auto s = static_cast<std::size_t>(k);
-        const auto xs = members.points_of(s);
-        if (xs.empty()) continue;
-        used[s] = 1;
-        Moments about_home;
-        for (const Vec3f& x : xs) about_home.add(x.cast<double>() - surfaces[s].home);
-        moments[s] = CentredMoments::of(about_home, surfaces[s].home);
-    }
+                     std::span<const Moments> about_home, std::vector<CentredMoments>& moments,
+                     std::vector<std::uint8_t>& used) {
     std::vector<double> thickness;
-    for (std::size_t s = 0; s < surfaces.size(); ++s)
-        if (used[s]) thickness.push_back(std::sqrt(std::max(surfaces[s].eigenvalues[0], 0.0)));
+    for (std::size_t s = 0; s < surfaces.size(); ++s) {
+        if (members.of(s).empty()) continue;
+        used[s] = 1;
+        moments[s] = CentredMoments::of(about_home[s], surfaces[s].home);
+        thickness.push_back(std::sqrt(std::max(surfaces[s].eigenvalues[0], 0.0)));
+    }
     return median_of(std::move(thickness));
 }
 
@@ -610,7 +604,7 @@ std::vector<std::int32_t> plane_labels(const BoundPlanes& planes,
 
 BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface> surfaces,
                                  std::span<const std::int32_t> labels,
-                                 const BoundPlaneConfig& config) {
+                                 const BoundPlaneConfig& config, BoundPlaneMemo* memo) {
     validate(config);
     check_grow_result(cloud, surfaces, labels);
     BoundPlanes out;
@@ -621,16 +615,43 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
     out.plane_of_patch.assign(ns, -1);
     out.stats.patches = ns;
 
-    // Member points and their moments per patch; the defaults that depend on the noise.
+    // Member points and their moments per patch (from the memo's sums on, where it has them);
+    // the defaults that depend on the noise.
     const PatchMembers members = collect_patch_members(cloud.points, labels, ns, threads);
+    const BoundPlaneMemo none;
+    const BoundPlaneMemo& recall = memo ? *memo : none;
+    const KnownMembers known = known_members(recall, members, surfaces);
+    std::vector<Moments> about_home;
+    std::vector<Aabb> boxes;
+    patch_sums(recall, known, members, surfaces, about_home, boxes, threads);
     std::vector<CentredMoments> moments(ns);
     std::vector<std::uint8_t> used(ns, 0);
-    out.stats.noise = patch_moments(surfaces, members, moments, used, threads);
+    out.stats.noise = patch_moments(surfaces, members, about_home, moments, used);
     resolve_defaults(cfg, out.stats.noise);
-    if (ns == 0 || members.index.empty()) return out;
 
-    // Patch graph, regions of coplanar patches, fragments absorbed and gaps bridged.
-    const auto pairs = adjacent_patch_pairs(members, surfaces, cfg.adjacency, threads);
+    // Patch graph (sought only where patches changed since the memo), regions of coplanar
+    // patches, fragments absorbed and gaps bridged.
+    std::vector<std::uint8_t> changed(ns, 1);
+    if (known.valid)
+        for (std::size_t s = 0; s < ns; ++s) changed[s] = known.count[s] != members.of(s).size();
+    const bool same_reach = known.valid && recall.reach == cfg.adjacency;
+    std::vector<std::uint64_t> keys = adjacent_patch_keys(
+        members, surfaces, boxes, same_reach ? changed : std::vector<std::uint8_t>(ns, 1),
+        same_reach ? std::span<const std::uint64_t>(recall.pairs)
+                   : std::span<const std::uint64_t>{},
+        cfg.adjacency, threads);
+    if (memo)
+        remember_patches(*memo, members, surfaces, std::move(about_home), std::move(boxes),
+                         cfg.adjacency, keys);
+    if (ns == 0 || members.index.empty()) {
+        if (memo) remember_planes(*memo, ns, {}, {}, {}, cfg);
+        return out;
+    }
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs(keys.size());
+    for (std::size_t k = 0; k < keys.size(); ++k)
+        pairs[k] = {static_cast<std::uint32_t>(keys[k] >> 32),
+                    static_cast<std::uint32_t>(keys[k] & 0xffffffffu)};
+    std::vector<std::uint64_t>().swap(keys);
     out.stats.adjacent_pairs = pairs.size();
     const PatchGraph graph = patch_graph(pairs, ns);
     Regions regions = grow_regions(surfaces, members, moments, used, graph, cfg);
@@ -639,17 +660,22 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
     drop_emptied(regions);
     for (std::vector<std::uint32_t>& list : regions.members) std::sort(list.begin(), list.end());
 
-    // Each region's plane, frame and boundary; independent, so in parallel.
+    // Each region's plane, frame and boundary (the memo's, where it fitted the same region);
+    // independent, so in parallel.
     const std::size_t nr = regions.members.size();
     std::vector<BoundPlane> planes(nr);
     detail::ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (std::size_t r = 0; r < nr; ++r)
         errors.run(r, [&] {
-            planes[r] = fit_region(surfaces, members, moments, regions.members[r],
-                                   regions.moments[r], regions.judges[r], cfg);
+            const BoundPlane* same = remembered_plane(recall, regions.members[r], changed,
+                                                      regions.moments[r], regions.judges[r], cfg);
+            planes[r] = same ? *same
+                             : fit_region(surfaces, members, moments, regions.members[r],
+                                          regions.moments[r], regions.judges[r], cfg);
         });
     errors.rethrow();
+    if (memo) remember_planes(*memo, ns, regions.moments, regions.judges, planes, cfg);
     publish_planes(planes, out);
     return out;
 }

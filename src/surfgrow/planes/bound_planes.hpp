@@ -14,6 +14,8 @@
 
 namespace surfgrow {
 
+struct BoundPlaneMemo;  // bound_plane_memo.hpp
+
 /// Parameters of region merging and boundary tracing. Lengths are in the cloud's units; a length
 /// of 0 means the default derived from `mu` (resolved values are in BoundPlanes::config).
 struct BoundPlaneConfig {
@@ -106,10 +108,15 @@ struct BoundPlanes {
 /// `labels[i]` is the surface of cloud point i or -1 (GrowResult::labels). Throws
 /// Error(kInvalidParameter) when the labels do not match the cloud or the surfaces, a surface has
 /// a non-unit normal, or the configuration is out of range. An empty result gives no planes.
+///
+/// With a `memo` (bound_plane_memo.hpp), what it holds from the last call is reused where the
+/// patches only gained members since (a map: pipeline/map.hpp), and it is refreshed: the same
+/// result, bit for bit, in less time. A memo that does not fit the patches is ignored.
 [[nodiscard]] BoundPlanes compute_bound_planes(const CloudView& cloud,
                                                std::span<const Surface> surfaces,
                                                std::span<const std::int32_t> labels,
-                                               const BoundPlaneConfig& config);
+                                               const BoundPlaneConfig& config,
+                                               BoundPlaneMemo* memo = nullptr);
 
 /// The same from a GrowResult (its surfaces and labels): what `surfgrow grow` calls.
 [[nodiscard]] inline BoundPlanes compute_bound_planes(const CloudView& cloud,

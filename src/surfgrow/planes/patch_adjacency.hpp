@@ -102,4 +102,16 @@ void for_each_home_near(const CubeIndex& index, const Vec3d& home, double reach,
 [[nodiscard]] std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_patch_pairs(
     const PatchMembers& members, std::span<const Surface> surfaces, double reach, int threads);
 
+/// The same pairs as keys (pair_key), sorted, from each patch's member box (`boxes`, empty where
+/// a patch has none), seeking only the pairs of which a patch is marked in `changed`: `known`
+/// holds the pairs found before among the unmarked ones, whose members did not change since
+/// (adjacency only grows with members, so `known` stays true). With every patch marked and
+/// nothing known, a search of all pairs.
+[[nodiscard]] std::vector<std::uint64_t> adjacent_patch_keys(const PatchMembers& members,
+                                                             std::span<const Surface> surfaces,
+                                                             const std::vector<Aabb>& boxes,
+                                                             std::span<const std::uint8_t> changed,
+                                                             std::span<const std::uint64_t> known,
+                                                             double reach, int threads);
+
 }  // namespace surfgrow

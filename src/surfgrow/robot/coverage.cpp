@@ -62,14 +62,6 @@ bool on_surface(const PlaneRaster& r, const Vec2d& p) {
            r.at(static_cast<int>(x), static_cast<int>(y));
 }
 
-// Goals on one plane, in its 2D coordinates.
-struct PlaneGoals {
-    std::vector<Vec2d> points;
-    std::vector<std::uint32_t> rows;
-    std::vector<std::uint8_t> from_home;
-    double covered_fraction = 0.0;
-};
-
 PlaneGoals cover_plane(const BoundPlane& plane, std::span<const Surface> surfaces, double b,
                        double spacing) {
     PlaneGoals g;
@@ -179,6 +171,62 @@ PlaneGoals cover_plane(const BoundPlane& plane, std::span<const Surface> surface
     const auto got = static_cast<std::size_t>(std::count(hit.begin(), hit.end(), std::uint8_t{1}));
     g.covered_fraction = total ? double(got) / double(total) : (g.points.empty() ? 0.0 : 1.0);
     return g;
+}
+
+bool same_rings(const std::vector<PolygonWithHoles>& a, const std::vector<PolygonWithHoles>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t k = 0; k < a.size(); ++k)
+        if (a[k].outer != b[k].outer || a[k].holes != b[k].holes) return false;
+    return true;
+}
+
+// The memo's goals of `plane` when it planned the same plane (what cover_plane reads: its frame,
+// polygons and patches, and those patches' homes); null otherwise.
+const PlaneGoals* remembered_goals(const CoverageMemo& memo, const BoundPlane& plane,
+                                   std::span<const Surface> surfaces) {
+    if (plane.patches.empty() || plane.patches[0] >= memo.plane_from.size()) return nullptr;
+    const std::int32_t k = memo.plane_from[plane.patches[0]];
+    if (k < 0) return nullptr;
+    const CoverageMemo::Plane& m = memo.planes[static_cast<std::size_t>(k)];
+    const BoundPlane& p = m.plane;
+    if (p.patches != plane.patches || p.centroid != plane.centroid || p.u_axis != plane.u_axis ||
+        p.v_axis != plane.v_axis || !same_rings(p.polygons, plane.polygons))
+        return nullptr;
+    for (std::size_t i = 0; i < plane.patches.size(); ++i) {
+        const std::uint32_t s = plane.patches[i];
+        if (s >= surfaces.size() || surfaces[s].home != m.homes[i]) return nullptr;
+    }
+    return &m.goals;
+}
+
+void remember_goals(CoverageMemo& memo, const BoundPlanes& planes,
+                    std::span<const Surface> surfaces, std::vector<PlaneGoals> goals,
+                    const CoverageConfig& cfg) {
+    memo.blast_radius = cfg.blast_radius;
+    memo.sample_spacing = cfg.sample_spacing;
+    memo.planes.clear();
+    memo.plane_from.assign(surfaces.size(), -1);
+    for (std::size_t k = 0; k < planes.planes.size(); ++k) {
+        const BoundPlane& p = planes.planes[k];
+        CoverageMemo::Plane m;
+        m.plane.centroid = p.centroid;
+        m.plane.u_axis = p.u_axis;
+        m.plane.v_axis = p.v_axis;
+        m.plane.polygons = p.polygons;
+        m.plane.patches = p.patches;
+        bool homes = !p.patches.empty();
+        for (const std::uint32_t s : p.patches) {
+            if (s >= surfaces.size()) {
+                homes = false;
+                break;
+            }
+            m.homes.push_back(surfaces[s].home);
+        }
+        if (!homes) continue;
+        m.goals = std::move(goals[k]);
+        memo.plane_from[p.patches[0]] = static_cast<std::int32_t>(memo.planes.size());
+        memo.planes.push_back(std::move(m));
+    }
 }
 
 // A plane's goals in sweep order: rows ascending, alternating direction along u.
@@ -383,7 +431,7 @@ void validate(const CoverageConfig& c) {
 }
 
 CoveragePlan plan_coverage(const BoundPlanes& planes, std::span<const Surface> surfaces,
-                           const CoverageConfig& config) {
+                           const CoverageConfig& config, CoverageMemo* memo) {
     validate(config);
     CoveragePlan plan;
     CoverageConfig& cfg = plan.config;
@@ -406,12 +454,17 @@ CoveragePlan plan_coverage(const BoundPlanes& planes, std::span<const Surface> s
 
     const std::size_t np = planes.planes.size();
     std::vector<PlaneGoals> goals(np);
+    const bool recall = memo && memo->blast_radius == cfg.blast_radius &&
+                        memo->sample_spacing == cfg.sample_spacing;
     detail::ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (std::size_t p = 0; p < np; ++p)
         errors.run(p, [&] {
-            goals[p] =
-                cover_plane(planes.planes[p], surfaces, cfg.blast_radius, cfg.sample_spacing);
+            const PlaneGoals* same =
+                recall ? remembered_goals(*memo, planes.planes[p], surfaces) : nullptr;
+            goals[p] = same ? *same
+                            : cover_plane(planes.planes[p], surfaces, cfg.blast_radius,
+                                          cfg.sample_spacing);
         });
     errors.rethrow();
 
@@ -486,6 +539,7 @@ CoveragePlan plan_coverage(const BoundPlanes& planes, std::span<const Surface> s
         (b.transition ? st.transition_length : st.sweep_length) += d;
         st.goal_path_length += (b.position - a.position).norm();
     }
+    if (memo) remember_goals(*memo, planes, surfaces, std::move(goals), cfg);
     return plan;
 }
 

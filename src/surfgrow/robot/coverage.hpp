@@ -12,6 +12,7 @@
 #include "surfgrow/core/grow_result.hpp"
 #include "surfgrow/core/surface.hpp"
 #include "surfgrow/planes/bound_planes.hpp"
+#include "surfgrow/planes/polygon2d.hpp"
 
 namespace surfgrow {
 
@@ -85,6 +86,29 @@ struct CoveragePlan {
     CoverageStats stats;
 };
 
+/// Goals on one plane in its 2D coordinates (BoundPlane::to_plane), before the path orders them.
+struct PlaneGoals {
+    std::vector<Vec2d> points;
+    std::vector<std::uint32_t> rows;
+    std::vector<std::uint8_t> from_home;
+    double covered_fraction = 0.0;
+};
+
+/// What plan_coverage keeps from one call to the next (a map's planes, most of which stay as
+/// they were from one scan to the next): each plane's goals, reused for a plane with the same
+/// polygons, frame and patches whose home points are the same, planned with the same lengths.
+/// The plan has the same bits as planned anew.
+struct CoverageMemo {
+    struct Plane {
+        BoundPlane plane;          ///< its frame, polygons and patches (the rest is not read)
+        std::vector<Vec3d> homes;  ///< of its patches
+        PlaneGoals goals;
+    };
+    double blast_radius = -1, sample_spacing = -1;
+    std::vector<Plane> planes;
+    std::vector<std::int32_t> plane_from;  ///< per patch, the plane it is the first patch of
+};
+
 /// Plans goals and a path over bound planes.
 ///
 /// Goals, per plane: first the points of a hexagonal lattice of circumradius blast_radius,
@@ -103,9 +127,13 @@ struct CoveragePlan {
 ///
 /// `surfaces` gives the home points for the greedy fill (may be empty). Throws
 /// Error(kInvalidParameter) for a configuration out of range. Deterministic for any thread count.
+///
+/// With a `memo`, the goals of a plane it planned before are reused (CoverageMemo), and it is
+/// refreshed.
 [[nodiscard]] CoveragePlan plan_coverage(const BoundPlanes& planes,
                                          std::span<const Surface> surfaces,
-                                         const CoverageConfig& config);
+                                         const CoverageConfig& config,
+                                         CoverageMemo* memo = nullptr);
 
 /// The same with a GrowResult's surfaces: what `surfgrow grow` calls after compute_bound_planes.
 [[nodiscard]] inline CoveragePlan plan_coverage(const BoundPlanes& planes, const GrowResult& result,

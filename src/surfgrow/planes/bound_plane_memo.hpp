@@ -1,0 +1,84 @@
+// What bound planes keep from one call to the next on a map (pipeline/map.hpp), whose patches
+// only gain points, at the end of the cloud: each patch's moments and box and which patches touch
+// are recomputed only where a patch gained members, and a region made of the same unchanged
+// patches keeps its plane. The result has the same bits as computing everything anew.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "surfgrow/core/geometry.hpp"
+#include "surfgrow/core/moments.hpp"
+#include "surfgrow/core/surface.hpp"
+#include "surfgrow/planes/bound_planes.hpp"
+#include "surfgrow/planes/patch_members.hpp"
+
+namespace surfgrow {
+
+/// A region's plane as fitted, with what its fit read besides its patches' members.
+struct FittedRegion {
+    CentredMoments moments;  ///< pooled over its patches, in the order it grew
+    Vec3d judge = Vec3d::Zero();
+    BoundPlane plane;  ///< its `patches` are the region's, ascending
+};
+
+/// Each patch as the last call saw it, and the planes it fitted. Empty until a call fills it.
+struct BoundPlaneMemo {
+    // Per patch: what decides whether it is the same patch ...
+    std::vector<Vec3d> homes;
+    std::vector<Vec3d> normals;
+    std::vector<double> radii;
+    std::vector<std::uint32_t> neighbours;
+    // ... and how many members it had, the last one's cloud index (0: none) ...
+    std::vector<std::uint32_t> counts;
+    std::vector<std::uint32_t> last;
+    // ... their moments about its home point in member order, and their box.
+    std::vector<Moments> moments;
+    std::vector<Aabb> boxes;
+    double reach = -1;                 ///< the adjacency distance `pairs` were found with
+    std::vector<std::uint64_t> pairs;  ///< adjacent patches (pair_key), sorted
+    /// The boundary lengths the planes were traced with (resolution, closing, simplification).
+    double resolution = -1, closing_radius = -1, simplify_tolerance = -1;
+    std::vector<FittedRegion> regions;
+    std::vector<std::int32_t> region_from;  ///< per patch, the region it is the first patch of
+};
+
+/// For each patch of (members, surfaces), how many of its first members the memo already holds:
+/// its count in the memo where the patch is the memo's (the same home, normal, radius and
+/// neighbours, at least as many members, the same one at that count), else 0. All 0, and `valid`
+/// false, when any patch the memo knows fails that: the memo then describes other patches.
+struct KnownMembers {
+    bool valid = false;
+    std::vector<std::uint32_t> count;
+};
+[[nodiscard]] KnownMembers known_members(const BoundPlaneMemo& memo, const PatchMembers& members,
+                                         std::span<const Surface> surfaces);
+
+/// Each patch's moments about its home point and box, from the memo's first known.count[s]
+/// members on (all of them where none are known), in member order: the same bits as from the
+/// first member. Patches without members keep empty moments and boxes.
+void patch_sums(const BoundPlaneMemo& memo, const KnownMembers& known, const PatchMembers& members,
+                std::span<const Surface> surfaces, std::vector<Moments>& moments,
+                std::vector<Aabb>& boxes, int threads);
+
+/// Records the patches as they are now in the memo (after patch_sums and the pairs).
+void remember_patches(BoundPlaneMemo& memo, const PatchMembers& members,
+                      std::span<const Surface> surfaces, std::vector<Moments> moments,
+                      std::vector<Aabb> boxes, double reach, std::vector<std::uint64_t> pairs);
+
+/// The memo's plane of a region (`patches` ascending, none of them changed: `changed` marks those
+/// that did), when it fitted the same one: the same patches, pooled moments and judge, traced with
+/// the same lengths. Null otherwise.
+[[nodiscard]] const BoundPlane* remembered_plane(const BoundPlaneMemo& memo,
+                                                 std::span<const std::uint32_t> patches,
+                                                 std::span<const std::uint8_t> changed,
+                                                 const CentredMoments& moments, const Vec3d& judge,
+                                                 const BoundPlaneConfig& config);
+
+/// Records the regions' planes (every region, before they are published) in the memo.
+void remember_planes(BoundPlaneMemo& memo, std::size_t patches,
+                     std::span<const CentredMoments> moments, std::span<const Vec3d> judges,
+                     std::span<const BoundPlane> planes, const BoundPlaneConfig& config);
+
+}  // namespace surfgrow
