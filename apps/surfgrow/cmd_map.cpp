@@ -72,6 +72,7 @@ void add_map_command(CLI::App& app) {
         bool no_planes = false;
         bool no_coverage = false;
         bool quiet = false;
+        double veil_angle = scanner::VeilFilter{}.angle_deg;
     };
     auto args = std::make_shared<Args>();
     cmd->add_option("raw", args->raws, "Raw scans (.sgraw) in scan order, or folders of them");
@@ -97,6 +98,7 @@ void add_map_command(CLI::App& app) {
     cmd->add_flag("!--no-picture", args->outputs.picture, "Do not render surfaces.png");
     cmd->add_flag("--labels-txt", args->outputs.files.labels_txt,
                   "Also write labels.txt (the labels as text, one per line)");
+    add_veil_option(*cmd, args->veil_angle);
     cmd->add_flag("-q,--quiet", args->quiet, "No line per scan on stdout");
     auto* robot = cmd->add_option_group("Robot outputs", "Refreshed after each scan");
     robot->add_flag("--no-planes", args->no_planes, "No planes (nor coverage)");
@@ -128,6 +130,7 @@ void add_map_command(CLI::App& app) {
         scanner::FuseOptions fuse;
         fuse.trim_q = args->trim;
         fuse.allow_partial = args->allow_partial;
+        fuse.veil.angle_deg = args->veil_angle;
         std::optional<scanner::Calibration> calibration;
         if (!args->calibration.empty() && args->calibration != "none")
             calibration = io::read_calibration_file(args->calibration);
@@ -142,8 +145,9 @@ void add_map_command(CLI::App& app) {
             if (calibration) scanner::apply_calibration(raw, *calibration);
             refuse_partial(file, raw, fuse.allow_partial, "maps");
             PointCloud points;
+            scanner::FuseReport fused;
             try {
-                points = scanner::fuse_scans(std::span(&raw, 1), fuse);
+                points = scanner::fuse_scans(std::span(&raw, 1), fuse, &fused);
             } catch (const Error& e) {
                 throw Error(e.code(), cat({file, ": ", e.what()}));
             }
@@ -158,10 +162,14 @@ void add_map_command(CLI::App& app) {
             char buf[400];
             std::snprintf(
                 buf, sizeof buf,
-                "scan %zu (%s): %llu points, %llu joined the map, %llu grew %llu surfaces; "
+                "scan %zu (%s): %llu points%s, %llu joined the map, %llu grew %llu surfaces; "
                 "map: %s; %.2f s (join %.3f, grow %.3f, outputs %.3f, write %.3f)",
                 u.scan, fs::path(file).filename().string().c_str(),
                 static_cast<unsigned long long>(u.points),
+                fused.veil_points.empty() || fused.veil_points[0] == 0
+                    ? ""
+                    : cat({" (", std::to_string(fused.veil_points[0]), " mixed pixels dropped)"})
+                          .c_str(),
                 static_cast<unsigned long long>(u.joined), static_cast<unsigned long long>(u.grown),
                 static_cast<unsigned long long>(u.new_surfaces),
                 summary_line(map.result().grow.stats).c_str(), watch.seconds(), u.join_seconds,

@@ -29,6 +29,7 @@ void add_scan2cloud_command(CLI::App& app) {
         bool allow_partial = false;
         std::string calibration;
         bool quiet = false;
+        double veil_angle = scanner::VeilFilter{}.angle_deg;
     };
     auto args = std::make_shared<Args>();
     cmd->add_option("raw", args->raws,
@@ -51,6 +52,7 @@ void add_scan2cloud_command(CLI::App& app) {
                     "scans' own");
     cmd->add_flag("--allow-partial", args->allow_partial,
                   "Fuse scans an acquisition left partial (a device failed mid-scan)");
+    add_veil_option(*cmd, args->veil_angle);
     cmd->add_flag("-q,--quiet", args->quiet, "No summary line on stdout");
     cmd->callback([args] {
         namespace fs = std::filesystem;
@@ -89,16 +91,18 @@ void add_scan2cloud_command(CLI::App& app) {
             }
         }
         fuse.allow_partial = args->allow_partial;
+        fuse.veil.angle_deg = args->veil_angle;
         for (std::size_t k = 0; k < raws.size(); ++k)
             refuse_partial(args->raws[k], raws[k], fuse.allow_partial, "fuses");
-        const PointCloud cloud = scanner::fuse_scans(raws, fuse);
+        scanner::FuseReport fused;
+        const PointCloud cloud = scanner::fuse_scans(raws, fuse, &fused);
         io::WriteOptions options;
         options.write_scans = true;
         io::write_cloud(args->out, cloud, options);
         if (!args->quiet)
             std::cout << raws.size() << " scans -> " << cloud.size() << " points"
                       << (calibration.empty() ? "" : " (calibrated by " + calibration + ")")
-                      << std::endl;
+                      << veil_summary(fused) << std::endl;
     });
 }
 

@@ -146,6 +146,23 @@ void ScanSettings::add_to(CLI::App& cmd) {
                    "is fused with poses that are slightly wrong, as a robot's are");
     cmd.add_option("--pose-error-angle", pose_error_deg,
                    "Sigma of a random error in each recorded scan orientation, degrees");
+    add_veil_option(cmd, veil_angle_deg);
+}
+
+void add_veil_option(CLI::App& cmd, double& angle_deg) {
+    cmd.add_option("--veil-angle", angle_deg,
+                   "Drop mixed pixels: a ray whose two neighbours (along its line or across the "
+                   "tilt rows) lie within this angle of its line of sight, one nearer and one "
+                   "farther, more than 30 mm away (the blend of two ranges behind a silhouette), "
+                   "degrees, e.g. 10 (off by default); 0 keeps every ray")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 45.0));
+}
+
+std::string veil_summary(const scanner::FuseReport& report) {
+    std::uint64_t n = 0;
+    for (const std::uint64_t k : report.veil_points) n += k;
+    return n ? cat({"; ", std::to_string(n), " mixed pixels dropped"}) : std::string();
 }
 
 scanner::FuseOptions fuse_options(int readings, int trim, const std::string& min_range,
@@ -187,6 +204,8 @@ ScanData run_scan(const ScanSettings& s) {
             {"--pose-error-angle ", num(s.pose_error_deg), " must lie between 0 and 10 degrees"}));
     const scanner::NoiseModel noise = noise_model(s.noise);
     d.fuse = fuse_options(s.readings, s.trim, s.min_range, s.max_range, spec.laser);
+    d.fuse.veil.angle_deg = s.veil_angle_deg;
+    scanner::validate(d.fuse.veil);
     d.scene = std::make_unique<scanner::Scene>(load_scene(s.scene));
     d.poses = load_poses(s.poses, d.scene->description().scanner);
 
@@ -202,7 +221,7 @@ ScanData run_scan(const ScanSettings& s) {
         d.poses[k] = d.raws[k].pose;
     }
     d.simulate_seconds = watch.lap();
-    d.cloud = scanner::fuse_scans(d.raws, d.fuse);
+    d.cloud = scanner::fuse_scans(d.raws, d.fuse, &d.fused);
     d.fuse_seconds = watch.lap();
     return d;
 }
@@ -232,9 +251,11 @@ void write_scan_outputs(const fs::path& dir, const ScanData& d, const ScanSettin
     for (const std::uint32_t k : d.cloud.scan_index) ++per_scan[k];
     nlohmann::json scans = nlohmann::json::array();
     for (std::size_t k = 0; k < d.raws.size(); ++k)
-        scans.push_back({{"file", raw_scan_name(k)},
-                         {"points", per_scan[k]},
-                         {"pose", io::pose_to_json(d.poses[k])}});
+        scans.push_back(
+            {{"file", raw_scan_name(k)},
+             {"points", per_scan[k]},
+             {"mixed_pixels_dropped", k < d.fused.veil_points.size() ? d.fused.veil_points[k] : 0},
+             {"pose", io::pose_to_json(d.poses[k])}});
     const scanner::LaserSpec& laser = d.raws.empty() ? scanner::LaserSpec{} : d.raws[0].spec.laser;
     const nlohmann::json manifest = {
         {"format", "surfgrow-scan"},
@@ -250,6 +271,8 @@ void write_scan_outputs(const fs::path& dir, const ScanData& d, const ScanSettin
         {"range_mm",
          {d.fuse.min_range_mm ? d.fuse.min_range_mm : laser.min_range_mm,
           d.fuse.max_range_mm ? d.fuse.max_range_mm : laser.max_range_mm}},
+        {"veil_filter",
+         {{"angle_deg", d.fuse.veil.angle_deg}, {"min_step_mm", d.fuse.veil.min_step_mm}}},
         {"points", d.cloud.size()},
         {"scans", scans},
         {"files",

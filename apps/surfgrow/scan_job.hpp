@@ -31,6 +31,7 @@ struct ScanSettings {
     std::string optical_offset = "40mm";  ///< laser optical centre above the tilt axis
     std::string pose_error;               ///< sigma of the recorded poses' translation error
     double pose_error_deg = 0.0;          ///< sigma of the recorded poses' rotation error
+    double veil_angle_deg = scanner::VeilFilter{}.angle_deg;  ///< mixed pixels dropped; 0: none
 
     /// Registers the options on a subcommand (everything but the output folder).
     void add_to(CLI::App& cmd);
@@ -43,7 +44,8 @@ struct ScanData {
     std::vector<scanner::Pose> poses;
     std::vector<scanner::RawScan> raws;
     scanner::FuseOptions fuse;
-    PointCloud cloud;  ///< metres, truth face id per point, scan index and origins
+    scanner::FuseReport fused;  ///< what fusing left out
+    PointCloud cloud;           ///< metres, truth face id per point, scan index and origins
     double simulate_seconds = 0.0;
     double fuse_seconds = 0.0;
 };
@@ -64,6 +66,12 @@ double optical_offset_m(const std::string& text);
 /// outside the sensor's.
 scanner::FuseOptions fuse_options(int readings, int trim, const std::string& min_range,
                                   const std::string& max_range, const scanner::LaserSpec& laser);
+
+/// Registers --veil-angle (FuseOptions::veil) on a subcommand that fuses raw scans.
+void add_veil_option(CLI::App& cmd, double& angle_deg);
+
+/// "; N mixed pixels dropped" for a summary line, or nothing when none were.
+std::string veil_summary(const scanner::FuseReport& report);
 
 /// Reads the scene and poses, checks every parameter, then simulates and fuses. Nothing is
 /// written. Throws surfgrow::Error for any bad input before the (slow) simulation starts.

@@ -109,6 +109,32 @@ TEST_F(CliScan, Scan2CloudOfTheRawScansIsTheFusedCloud) {
               io::read_cloud(scan_dir() / "cloud.ply").size() / 2);
 }
 
+// --veil-angle drops mixed pixels (off by default) and says how many; outside 0..45 degrees it
+// is a usage error that writes nothing.
+TEST_F(CliScan, Scan2CloudDropsMixedPixelsWhenAsked) {
+    // The pipes in front of their wall: blends fill the depth gaps behind them (the room corner
+    // above has no depth edges).
+    ASSERT_EQ(surfgrow(cat({"scan --scene pipes --poses 1 -q -o ", q(tmp_.path() / "pipes")})).code,
+              0);
+    const fs::path raw0 = tmp_.path() / "pipes" / "scan-000.sgraw";
+    const CliRun all = surfgrow(cat({"scan2cloud ", q(raw0), " -o ", q(tmp_.path() / "f.ply")}));
+    ASSERT_EQ(all.code, 0) << all.out;
+    EXPECT_EQ(all.out.find("mixed pixels"), std::string::npos) << all.out;
+    const CliRun veil =
+        surfgrow(cat({"scan2cloud ", q(raw0), " --veil-angle 10 -o ", q(tmp_.path() / "g.ply")}));
+    ASSERT_EQ(veil.code, 0) << veil.out;
+    const std::size_t kept = io::read_cloud(tmp_.path() / "g.ply").size();
+    const std::size_t every = io::read_cloud(tmp_.path() / "f.ply").size();
+    ASSERT_LT(kept, every);
+    EXPECT_NE(veil.out.find(cat({"; ", std::to_string(every - kept), " mixed pixels dropped"})),
+              std::string::npos)
+        << veil.out;
+    const CliRun bad =
+        surfgrow(cat({"scan2cloud ", q(raw0), " --veil-angle 50 -o ", q(tmp_.path() / "h.ply")}));
+    EXPECT_EQ(bad.code, static_cast<int>(ErrorCode::kUsage)) << bad.out;
+    EXPECT_FALSE(fs::exists(tmp_.path() / "h.ply"));
+}
+
 // The folder `surfgrow scan -o` wrote stands for its raw scans, in scan order (the README's
 // `surfgrow scan2cloud scan/ -o cloud.ply`); a folder without any is refused by name.
 TEST_F(CliScan, Scan2CloudOfAScanFolderIsTheFusedCloud) {

@@ -39,8 +39,11 @@ RangeFilter make_filter(const RawScan& scan, const FuseOptions& o) {
 
 }  // namespace
 
-PointCloud fuse_scans(std::span<const RawScan> scans, const FuseOptions& options) {
+PointCloud fuse_scans(std::span<const RawScan> scans, const FuseOptions& options,
+                      FuseReport* report) {
+    validate(options.veil);
     PointCloud cloud;
+    if (report) report->veil_points.assign(scans.size(), 0);
     bool all_truth = !scans.empty();
     for (const RawScan& s : scans) all_truth = all_truth && s.has_truth();
 
@@ -65,9 +68,14 @@ PointCloud fuse_scans(std::span<const RawScan> scans, const FuseOptions& options
 #pragma omp parallel for schedule(static) num_threads(resolve_threads(0))
         for (std::size_t r = 0; r < rays; ++r) range_mm[r] = filter(scan.ray_readings(r));
 
+        const std::vector<std::uint8_t> veil = veil_rays(scanner, range_mm, options.veil);
         const int steps = scanner.step_count();
         for (std::size_t r = 0; r < rays; ++r) {
             if (std::isnan(range_mm[r])) continue;
+            if (veil[r]) {
+                if (report) ++report->veil_points[k];
+                continue;
+            }
             const int tilt = static_cast<int>(r / static_cast<std::size_t>(steps));
             const int step = static_cast<int>(r % static_cast<std::size_t>(steps));
             cloud.points.push_back(

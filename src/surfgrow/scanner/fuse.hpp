@@ -3,9 +3,11 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "surfgrow/core/point_cloud.hpp"
 #include "surfgrow/scanner/raw_scan.hpp"
+#include "surfgrow/scanner/veil_filter.hpp"
 
 namespace surfgrow::scanner {
 
@@ -15,11 +17,20 @@ struct FuseOptions {
     std::uint16_t max_range_mm = 0;  ///< 0: each scan's laser limit; else within it, mm
     /// A partial scan (RawScan::partial: the acquisition stopped early) is refused unless set.
     bool allow_partial = false;
+    /// Mixed pixels in the depth gaps behind silhouettes dropped (veil_filter.hpp); off by
+    /// default (angle 0: every ray kept).
+    VeilFilter veil;
+};
+
+/// What fuse_scans left out, scan by scan.
+struct FuseReport {
+    std::vector<std::uint64_t> veil_points;  ///< mixed pixels dropped (FuseOptions::veil)
 };
 
 /// Fuses scans taken at known poses into one cloud, in metres, world frame.
 ///
-/// Each ray's readings go through RangeFilter (eq. 1); a ray with a range becomes the point
+/// Each ray's readings go through RangeFilter (eq. 1); a ray with a range that is not a mixed
+/// pixel (options.veil; counted in `report` if given) becomes the point
 /// pose * TiltingScanner::to_sensor(tilt, step, range), at the servo's read-back angle where the
 /// scan recorded one. Points are ordered scan by scan, ray by
 /// ray. For every point scan_index holds its scan's position in `scans`; scan_origins[k] is scan
@@ -30,7 +41,7 @@ struct FuseOptions {
 /// Throws Error(kInvalidParameter) naming the scan if a scan is invalid, n <= 2q, or a range
 /// limit lies outside the scan's laser limits (or min >= max), or a scan is partial and
 /// options.allow_partial is not set.
-[[nodiscard]] PointCloud fuse_scans(std::span<const RawScan> scans,
-                                    const FuseOptions& options = {});
+[[nodiscard]] PointCloud fuse_scans(std::span<const RawScan> scans, const FuseOptions& options = {},
+                                    FuseReport* report = nullptr);
 
 }  // namespace surfgrow::scanner
