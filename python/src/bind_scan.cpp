@@ -18,6 +18,7 @@
 #include "surfgrow/io/scene_file.hpp"
 #include "surfgrow/scanner/builtin_scenes.hpp"
 #include "surfgrow/scanner/fuse.hpp"
+#include "surfgrow/scanner/veil_filter.hpp"
 #include "surfgrow/scanner/scan_simulator.hpp"
 
 namespace surfgrow::python {
@@ -99,7 +100,7 @@ void bind_scan(py::module_& m) {
         [](const std::string& scene, const std::variant<int, std::string>& poses,
            std::uint64_t seed, int readings, int trim, const std::string& laser,
            const std::string& noise, double optical_offset, std::optional<double> min_range,
-           std::optional<double> max_range, const py::object& progress) {
+           std::optional<double> max_range, double veil_angle, const py::object& progress) {
             scanner::ScannerSpec spec;
             spec.laser = scanner::laser_preset(laser);
             spec.readings_per_ray = readings;
@@ -115,6 +116,8 @@ void bind_scan(py::module_& m) {
             fuse.trim_q = trim;
             fuse.min_range_mm = range_mm(min_range, "min_range");
             fuse.max_range_mm = range_mm(max_range, "max_range");
+            fuse.veil.angle_deg = veil_angle;
+            scanner::validate(fuse.veil);
             auto truth = std::make_shared<Truth>();
             auto scene_ptr = std::make_shared<scanner::Scene>(scene_named(scene));
             truth->scene = scene_ptr;
@@ -145,11 +148,13 @@ void bind_scan(py::module_& m) {
         py::kw_only(), py::arg("readings") = 5, py::arg("trim") = 1,
         py::arg("laser") = "urg04lx-paper", py::arg("noise") = "datasheet",
         py::arg("optical_offset") = 0.040, py::arg("min_range") = py::none(),
-        py::arg("max_range") = py::none(), py::arg("progress") = py::none(),
+        py::arg("max_range") = py::none(), py::arg("veil_angle") = 0.0,
+        py::arg("progress") = py::none(),
         "Simulates a tilting URG-04LX scanning a scene from several poses and fuses the scans, "
         "as `surfgrow scan` does (same arguments, same points). scene: a built-in name "
         "('ibeam-channel', 'room-corner', 'pipes', 'corridor', 'stairs') or a scene file. poses: "
-        "a count along the scene's scan path, or a poses file. Lengths in metres.");
+        "a count along the scene's scan path, or a poses file. Lengths in metres. veil_angle: "
+        "drop mixed pixels when fusing, as `--veil-angle` (degrees, e.g. 10; 0 keeps every ray).");
 
     m.def(
         "evaluate",

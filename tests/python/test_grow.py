@@ -183,3 +183,14 @@ def test_warns_when_mu_does_not_fit_the_units(corner):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         surfgrow.grow(mm, mu=12)  # fits: no warning
+
+
+def test_simulate_drops_mixed_pixels_when_asked():
+    # The pipes in front of their wall: blends in the depth gaps behind them. veil_angle drops
+    # them (scanner/veil_filter.hpp); no face point goes (truth label -1: a blend or no face).
+    every = surfgrow.simulate("pipes", poses=1, seed=1)
+    kept = surfgrow.simulate("pipes", poses=1, seed=1, veil_angle=10.0)
+    assert len(kept) < len(every) - 1000
+    assert np.count_nonzero(kept.truth.labels >= 0) >= np.count_nonzero(every.truth.labels >= 0) - 10
+    with pytest.raises(surfgrow.InvalidParameterError, match="mixed-pixel angle"):
+        surfgrow.simulate("pipes", poses=1, seed=1, veil_angle=50.0)
