@@ -18,8 +18,8 @@
 #include "surfgrow/io/scene_file.hpp"
 #include "surfgrow/scanner/builtin_scenes.hpp"
 #include "surfgrow/scanner/fuse.hpp"
-#include "surfgrow/scanner/veil_filter.hpp"
 #include "surfgrow/scanner/scan_simulator.hpp"
+#include "surfgrow/scanner/veil_filter.hpp"
 
 namespace surfgrow::python {
 
