@@ -5,6 +5,7 @@
 // Run: build/bench/robustness_study [--paper] [--scene NAME] [--spread S] [--incidence DEG]
 //      [--sigmas K] [--mu-max FACTOR] [--alpha A] [--pool-radius MU] [--pool-angle DEG]
 //      [--thickness K] [--no-attach] [--pose-seed S] [--poses N] [--min-new N]
+//      [--veil-angle DEG] (the mixed-pixel filter when fusing: scanner/veil_filter.hpp)
 // Where the tail lies, by environment variable: STUDY_TIMES (stages and counters), STUDY_NOISE
 // (the noise and layer profiles), STUDY_BANDS (by range band and incidence), STUDY_KINDS (how the
 // points > 45 deg off went wrong; with STUDY_MIXED, the surfaces mostly of mixed pixels),
@@ -40,6 +41,8 @@ namespace {
 std::uint64_t pose_seed = 7;  // the pose errors: as the tests draw them
 // How many poses the fused rows fuse (--poses): 3, as the scene tests.
 int fused_poses = 3;
+// How the scans are fused (--veil-angle: mixed pixels dropped; off, as the tests fuse).
+scanner::FuseOptions fusing;
 
 // As tests/eval/test_builtin_scenes.cpp scans: three poses along the scene's scan path; one scan
 // is the middle one, three are fused with recorded poses 2 mm and 0.1 degree off, as a robot's are.
@@ -56,11 +59,12 @@ PointCloud scan(const scanner::Scene& scene, double offset_m, int poses, std::ui
     std::size_t single = 1;
     if (const char* k = std::getenv("STUDY_SINGLE"))
         single = std::min<std::size_t>(2, std::strtoul(k, nullptr, 10));
-    if (poses == 1) return scanner::fuse_scans(std::span<const scanner::RawScan>(&raws[single], 1));
+    if (poses == 1)
+        return scanner::fuse_scans(std::span<const scanner::RawScan>(&raws[single], 1), fusing);
     for (std::size_t k = 0; k < raws.size(); ++k)
         raws[k].pose = scanner::perturb_pose(raws[k].pose, 0.002, scanner::deg_to_rad(0.1),
                                              mix_seed(pose_seed, k));
-    return scanner::fuse_scans(raws);
+    return scanner::fuse_scans(raws, fusing);
 }
 
 }  // namespace
@@ -111,6 +115,9 @@ int main(int argc, char** argv) {
             ++a;
         } else if (arg == "--alpha") {
             config.alpha = std::atof(next);
+            ++a;
+        } else if (arg == "--veil-angle") {
+            fusing.veil.angle_deg = std::atof(next);
             ++a;
         } else if (arg == "--min-new") {
             config.min_new_points = std::atoi(next);
