@@ -244,8 +244,8 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
     const double cos_max = std::cos(cfg.max_angle_deg * kDeg);
     auto parallel = [&](const Vec3d& x, const Vec3d& y) { return std::abs(x.dot(y)) >= cos_max; };
     for (const std::uint64_t key : pairs) {
-        const std::uint32_t a = root(static_cast<std::uint32_t>(key >> 32));
-        const std::uint32_t b = root(static_cast<std::uint32_t>(key & 0xffffffffu));
+        const std::uint32_t a = root(pair_of_key(key).first);
+        const std::uint32_t b = root(pair_of_key(key).second);
         if (a == b) continue;
         const CentredMoments &ma = region_moments[a], &mb = region_moments[b];
         CentredMoments pooled = ma;
@@ -333,26 +333,28 @@ void resolve_defaults(BoundPlaneConfig& cfg, double noise) {
     if (cfg.simplify_tolerance == 0) cfg.simplify_tolerance = cfg.resolution;
 }
 
-// Which patches touch which, as CSR: the neighbours of s are adj[off[s], off[s + 1]), ascending.
+// Which patches touch which, as CSR from the pairs' keys (pair_key, sorted): the neighbours of s
+// are adj[off[s], off[s + 1]), ascending.
 struct PatchGraph {
     std::vector<std::uint32_t> off;
     std::vector<std::uint32_t> adj;
 };
 
-PatchGraph patch_graph(std::span<const std::pair<std::uint32_t, std::uint32_t>> pairs,
-                       std::size_t ns) {
+PatchGraph patch_graph(std::span<const std::uint64_t> pairs, std::size_t ns) {
     PatchGraph g;
     std::vector<std::uint32_t>& adj_off = g.off;
     std::vector<std::uint32_t>& adj = g.adj;
     adj_off.assign(ns + 1, 0);
-    for (const auto& [a, b] : pairs) {
+    for (const std::uint64_t key : pairs) {
+        const auto [a, b] = pair_of_key(key);
         ++adj_off[a + 1];
         ++adj_off[b + 1];
     }
     for (std::size_t s = 0; s < ns; ++s) adj_off[s + 1] += adj_off[s];
     adj.resize(adj_off[ns]);
     std::vector<std::uint32_t> fill(adj_off.begin(), adj_off.end() - 1);
-    for (const auto& [a, b] : pairs) {  // pairs are sorted, so each list comes out ascending
+    for (const std::uint64_t key : pairs) {  // sorted, so each list comes out ascending
+        const auto [a, b] = pair_of_key(key);
         adj[fill[a]++] = b;
         adj[fill[b]++] = a;
     }
@@ -647,13 +649,8 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
         if (memo) remember_planes(*memo, ns, {}, {}, {}, cfg);
         return out;
     }
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs(keys.size());
-    for (std::size_t k = 0; k < keys.size(); ++k)
-        pairs[k] = {static_cast<std::uint32_t>(keys[k] >> 32),
-                    static_cast<std::uint32_t>(keys[k] & 0xffffffffu)};
-    std::vector<std::uint64_t>().swap(keys);
-    out.stats.adjacent_pairs = pairs.size();
-    const PatchGraph graph = patch_graph(pairs, ns);
+    out.stats.adjacent_pairs = keys.size();
+    const PatchGraph graph = patch_graph(keys, ns);
     Regions regions = grow_regions(surfaces, members, moments, used, graph, cfg);
     absorb_fragments(members, graph.off, graph.adj, cfg, moments, regions);
     bridge_gaps(surfaces, used, cfg, regions, threads);

@@ -34,6 +34,24 @@ struct Scratch {
     std::vector<Vec3d> near_a, near_b;
 };
 
+// Each used box's centre (float, for an index) and largest half extent; `halves` lists the used
+// boxes' half extents.
+struct BoxCentres {
+    std::vector<Vec3f> centre;
+    std::vector<double> half, halves;
+};
+BoxCentres box_centres(const std::vector<Aabb>& box, const std::vector<std::uint8_t>& use) {
+    const std::size_t n = box.size();
+    BoxCentres c{std::vector<Vec3f>(n, Vec3f::Zero()), std::vector<double>(n, 0.0), {}};
+    for (std::size_t s = 0; s < n; ++s) {
+        if (!use[s]) continue;
+        c.centre[s] = ((box[s].min + box[s].max) / 2).cast<float>();
+        c.half[s] = box[s].size().maxCoeff() / 2;
+        c.halves.push_back(c.half[s]);
+    }
+    return c;
+}
+
 // The keys of the pairs of boxes among those `use` marks that lie within `pad` of each other on
 // every axis and that `touch(a, b, scratch)` accepts, one list per thread. Such boxes' centres
 // are within 2 e + pad of each other on every axis, e the larger box's largest half extent: so
@@ -43,15 +61,10 @@ template <class Touch>
 std::vector<std::vector<std::uint64_t>> near_box_pairs(const std::vector<Aabb>& box,
                                                        const std::vector<std::uint8_t>& use,
                                                        double pad, int threads, Touch&& touch) {
-    const std::size_t n = box.size();
-    std::vector<Vec3f> centre(n, Vec3f::Zero());
-    std::vector<double> half(n, 0.0), halves;
-    for (std::size_t s = 0; s < n; ++s) {
-        if (!use[s]) continue;
-        centre[s] = ((box[s].min + box[s].max) / 2).cast<float>();
-        half[s] = box[s].size().maxCoeff() / 2;
-        halves.push_back(half[s]);
-    }
+    BoxCentres boxes = box_centres(box, use);
+    const std::vector<Vec3f>& centre = boxes.centre;
+    const std::vector<double>& half = boxes.half;
+    std::vector<double>& halves = boxes.halves;
     std::vector<std::vector<std::uint64_t>> found(static_cast<std::size_t>(threads));
     if (halves.empty()) return found;
     std::nth_element(halves.begin(), halves.begin() + halves.size() / 2, halves.end());
@@ -119,14 +132,10 @@ std::vector<std::vector<std::uint64_t>> box_pairs_of(const std::vector<Aabb>& bo
                                                      double pad, int threads, Touch&& touch) {
     const std::size_t n = box.size();
     std::vector<std::vector<std::uint64_t>> found(static_cast<std::size_t>(threads));
-    std::vector<Vec3f> centre(n, Vec3f::Zero());
-    std::vector<double> half(n, 0.0), halves;
-    for (std::size_t s = 0; s < n; ++s) {
-        if (!use[s]) continue;
-        centre[s] = ((box[s].min + box[s].max) / 2).cast<float>();
-        half[s] = box[s].size().maxCoeff() / 2;
-        halves.push_back(half[s]);
-    }
+    BoxCentres boxes = box_centres(box, use);
+    const std::vector<Vec3f>& centre = boxes.centre;
+    const std::vector<double>& half = boxes.half;
+    std::vector<double>& halves = boxes.halves;
     if (halves.empty() || from.empty()) return found;
     std::nth_element(halves.begin(), halves.begin() + halves.size() / 2, halves.end());
     const double largest = *std::max_element(halves.begin(), halves.end());
@@ -293,9 +302,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_patch_pairs(
     const std::vector<std::uint64_t> packed =
         adjacent_patch_keys(members, surfaces, boxes, all, {}, reach, threads);
     std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs(packed.size());
-    for (std::size_t k = 0; k < packed.size(); ++k)
-        pairs[k] = {static_cast<std::uint32_t>(packed[k] >> 32),
-                    static_cast<std::uint32_t>(packed[k] & 0xffffffffu)};
+    for (std::size_t k = 0; k < packed.size(); ++k) pairs[k] = pair_of_key(packed[k]);
     return pairs;
 }
 

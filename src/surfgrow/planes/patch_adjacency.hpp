@@ -23,6 +23,11 @@ namespace surfgrow {
     return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
 }
 
+/// The ids pair_key packed: (smaller, larger).
+[[nodiscard]] inline std::pair<std::uint32_t, std::uint32_t> pair_of_key(std::uint64_t key) {
+    return {static_cast<std::uint32_t>(key >> 32), static_cast<std::uint32_t>(key & 0xffffffffu)};
+}
+
 /// The keys of every part, sorted and unique: the same whatever the split into parts.
 [[nodiscard]] std::vector<std::uint64_t> merged_unique(
     std::initializer_list<const std::vector<std::vector<std::uint64_t>>*> sources);
