@@ -3,6 +3,7 @@
 // bounds docs/scanner.md states; deterministic for any number of threads.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -188,6 +189,44 @@ TEST_F(MapTest, OutputsAfterEachScanAreThoseComputedAnew) {
     const PipelineResult& r0 =
         first.add_scan(scanner::fuse_scans(std::span(&raw, 1)), raw.pose.translation());
     expect_same_planes(*anew.finish(first.cloud(), r0.grow, &marked).planes, *r0.planes);
+}
+
+TEST_F(MapTest, OccupancyAfterEachScanIsTheGridBuiltAnew) {
+    // The map extends its occupancy grid by each scan's registered points where the scan leaves
+    // the grown points' low corner (the grid's origin) where it was, else indexes its cloud
+    // anew (OccupancyMemo): after every scan the grid must be the one built anew. A memo whose
+    // grid is marked (cube 0, never occupied: the origin lies a cube and a half below the
+    // lowest point) shows where it was extended. The three scans each reach lower than the one
+    // before (by millimetres of noise on the floor); the first scan taken again cannot.
+    MapConfig c;
+    c.pipeline.planes.reset();
+    c.pipeline.coverage.reset();
+    c.pipeline.collision = false;
+    Map map(c);
+    const Pipeline anew(c.pipeline);
+    PipelineMemo marked;
+    std::size_t extended = 0;
+    for (std::size_t k = 0; k <= scans_->size(); ++k) {
+        const scanner::RawScan& raw = (*scans_)[k % scans_->size()];
+        const PipelineResult& r =
+            map.add_scan(scanner::fuse_scans(std::span(&raw, 1)), raw.pose.translation());
+        const OccupancyGrid truth = *anew.finish(map.cloud(), r.grow).occupancy;
+        SCOPED_TRACE("after scan " + std::to_string(k));
+        const OccupancyGrid& got = *r.occupancy;
+        EXPECT_FALSE(got.occupied_cell(CellCoords::Zero()));
+        EXPECT_EQ(got.origin(), truth.origin());
+        EXPECT_EQ(got.registered_points(), truth.registered_points());
+        ASSERT_EQ(got.size(), truth.size());
+        EXPECT_TRUE(std::equal(got.cells().begin(), got.cells().end(), truth.cells().begin()));
+        EXPECT_TRUE(std::equal(got.point_counts().begin(), got.point_counts().end(),
+                               truth.point_counts().begin()));
+
+        extended +=
+            anew.finish(map.cloud(), r.grow, &marked).occupancy->occupied_cell(CellCoords::Zero());
+        marked.occupancy.grid->add_registered({CellCoords::Zero()});
+    }
+    std::printf("the grid extended after %zu of %zu scans\n", extended, scans_->size() + 1);
+    EXPECT_GE(extended, 1u);
 }
 
 TEST(Map, RefusesWhatItCannotUse) {

@@ -53,13 +53,20 @@ PipelineResult Pipeline::outputs(const CloudView& cloud, GrowResult grown,
     // The occupancy grid (on the grower's cubes: indexed here when the caller has no index) and
     // the collision spheres need none of the planes. With more than one thread they are built
     // while the planes and coverage run, whose serial parts (growing the regions, the largest
-    // plane's fit) leave a core idle: a Map's 2 M points take 0.05 s to index after every scan.
-    // Each writes only its own members of r.
+    // plane's fit) leave a core idle: a Map's 2 M points take 0.05 s to index after a scan that
+    // moves the grid's origin (after the others its grid is extended: OccupancyMemo). Each writes
+    // only its own members of r.
     const auto occupancy_and_collision = [&] {
         if (c.occupancy) {
             const Stopwatch watch;
-            if (!index) index = SurfaceGrower(c.grow).index(cloud);
-            r.occupancy = OccupancyGrid(index->index, r.grow.labels, c.grow.mu);
+            if (memo) r.occupancy = extend_occupancy(memo->occupancy, cloud, r.grow.labels, c.grow);
+            if (!r.occupancy) {
+                if (!index) index = SurfaceGrower(c.grow).index(cloud);
+                r.occupancy = OccupancyGrid(index->index, r.grow.labels, c.grow.mu);
+                if (memo)
+                    remember_occupancy(memo->occupancy, cloud, r.grow.labels, index->index.bounds(),
+                                       *r.occupancy, c.grow);
+            }
             index.reset();
             r.seconds.occupancy = watch.seconds();
         }

@@ -12,6 +12,7 @@
 #include "surfgrow/robot/collision_spheres.hpp"
 #include "surfgrow/robot/coverage.hpp"
 #include "surfgrow/robot/occupancy_grid.hpp"
+#include "surfgrow/robot/occupancy_memo.hpp"
 
 namespace surfgrow {
 
@@ -48,10 +49,12 @@ struct PipelineResult {
 };
 
 /// What a Pipeline keeps from one finish() to the next on a map, whose surfaces only gain points
-/// (Map): the work of the bound planes and coverage that the new points left as it was.
+/// and whose cloud only gains points at its end (Map): the work of the bound planes, coverage and
+/// occupancy grid that the new points left as it was.
 struct PipelineMemo {
     BoundPlaneMemo planes;
     CoverageMemo coverage;
+    OccupancyMemo occupancy;
 };
 
 /// Runs the stages of a PipelineConfig over clouds. The result is the same, byte for byte, for

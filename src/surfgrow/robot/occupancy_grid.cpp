@@ -51,6 +51,34 @@ OccupancyGrid::OccupancyGrid(const CubeIndex& index, std::span<const std::int32_
     }
 }
 
+void OccupancyGrid::add_registered(std::vector<CellCoords> cells) {
+    if (cells.empty()) return;
+    std::sort(cells.begin(), cells.end(), less_cell);
+    std::vector<CellCoords> merged;
+    std::vector<std::uint32_t> counts;
+    merged.reserve(cells_.size() + cells.size());
+    counts.reserve(cells_.size() + cells.size());
+    std::size_t old = 0;
+    for (std::size_t i = 0; i < cells.size();) {
+        std::size_t j = i;
+        while (j < cells.size() && cells[j] == cells[i]) ++j;
+        for (; old < cells_.size() && less_cell(cells_[old], cells[i]); ++old) {
+            merged.push_back(cells_[old]);
+            counts.push_back(counts_[old]);
+        }
+        auto added = static_cast<std::uint32_t>(j - i);
+        if (old < cells_.size() && cells_[old] == cells[i]) added += counts_[old++];
+        merged.push_back(cells[i]);
+        counts.push_back(added);
+        i = j;
+    }
+    merged.insert(merged.end(), cells_.begin() + static_cast<std::ptrdiff_t>(old), cells_.end());
+    counts.insert(counts.end(), counts_.begin() + static_cast<std::ptrdiff_t>(old), counts_.end());
+    registered_ += cells.size();
+    cells_ = std::move(merged);
+    counts_ = std::move(counts);
+}
+
 CellCoords OccupancyGrid::cell_of(const Vec3d& p) const {
     // The index's rounding: world -> float local -> floor(local / side).
     const Vec3f local = (p - origin_).cast<float>();

@@ -63,6 +63,11 @@ class OccupancyGrid {
     /// Union of the occupied cubes (world); empty if none.
     [[nodiscard]] Aabb bounds() const;
 
+    /// Counts one more registered point in each of `cells` (cell_of of the point), occupying
+    /// the cubes not yet occupied: the grid of the cloud with those points added, as long as they
+    /// leave the index's origin where it is (OccupancyMemo checks that).
+    void add_registered(std::vector<CellCoords> cells);
+
   private:
     double mu_ = 0.0;
     double cube_size_ = 0.0;
