@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -91,6 +92,9 @@ Outcome grow(const LayeredScene& s) {
     o.floor_p95_deg = err.empty() ? 90 : test::quantile(err, 0.95) / kDeg;
     o.floor_over_45 = double(over) / double(floor);
     o.wall_registered = double(wall_registered) / double(wall);
+    std::printf("floor %.2f %% registered, p95 %.2f deg, %.2f %% > 45 deg; wall %.2f %%\n",
+                100 * o.floor_registered, o.floor_p95_deg, 100 * o.floor_over_45,
+                100 * o.wall_registered);
     return o;
 }
 
@@ -108,10 +112,12 @@ TEST(LayeredBalls, AFarFloorWhoseScansLieApartAlongTheirRaysGrowsWithItsOwnNorma
 TEST(LayeredBalls, LayersTheDatasheetsAccuracyAllowsAtThreeMetresHeldToTheirMeasuredLevel) {
     // +-30 mm, the URG's +-1 % of range at 3 m: every ball holding two scans is thick. Judged as
     // one, 80 % of the floor registered, p95 56 degrees, 5 % more than 45 degrees off; judged
-    // within its layers 97 %, 7.6 degrees (2026-12-07), none.
+    // within its layers 97 %, 7.6 degrees (2026-12-07), none. With a tolerance that spans the
+    // layers (the plane lies between them: with the noise's alone, the outer layers' farther
+    // halves stayed out) 100 %, 8.1 degrees, 0.2 %.
     const Outcome o = grow(layered_scene(0.03));
     EXPECT_GE(o.wall_registered, 0.99);
-    EXPECT_GE(o.floor_registered, 0.95);
+    EXPECT_GE(o.floor_registered, 0.99);
     EXPECT_LT(o.floor_p95_deg, 10.0);
     EXPECT_LE(o.floor_over_45, 0.005);
 }

@@ -217,7 +217,8 @@ PointCloud wall_seen_twice(double offset) {
 
 // Share of scan 1's points registered; of all registered points on surfaces more than 10 deg off
 // the wall; and of scan 1's registered points on surfaces whose plane lies in its own layer (more
-// than half the offset above the wall at x = 0.3 m, the middle of scan 1's patch).
+// than half the offset above the wall where the point is: a patch's normal wanders by about a
+// degree, which taken 0.3 m away, at the middle of scan 1's patch, would lift it as much).
 struct SecondScan {
     double registered = 0, off = 0, own_layer = 0;
 };
@@ -230,9 +231,11 @@ SecondScan second_scan(const PointCloud& c, const GrowResult& r, double offset) 
         if (l < 0) continue;
         ++second_registered;
         const Surface& s = r.surfaces[static_cast<std::size_t>(l)];
-        const Vec3d& n = s.normal;  // the plane's height at x = 0.3 m, y = 0
-        const double z = s.centroid.z() -
-                         (n.x() * (0.3 - s.centroid.x()) + n.y() * (0.0 - s.centroid.y())) / n.z();
+        const Vec3d& n = s.normal;  // the plane's height at the point
+        const Vec3d p = c.points[i].cast<double>();
+        const double z =
+            s.centroid.z() -
+            (n.x() * (p.x() - s.centroid.x()) + n.y() * (p.y() - s.centroid.y())) / n.z();
         own += z > 0.5 * offset ? 1 : 0;
     }
     return {double(second_registered) / double(second), share_off(r, 10.0),
