@@ -36,7 +36,8 @@ std::optional<OccupancyGrid> extend_occupancy(OccupancyMemo& memo, const CloudVi
                                               const GrowerConfig& config) {
     const std::size_t from = memo.points;
     if (!memo.grid || from == 0 || from > cloud.size() || labels.size() != cloud.size() ||
-        memo.grown_box.empty() || memo.mu != config.mu || !same_crop(memo.crop, config.crop))
+        memo.grown_box.empty() || memo.grid->mu() != config.mu ||
+        !same_crop(memo.crop, config.crop))
         return std::nullopt;
     if (config.crop.active() && crop_centre(cloud, config) != memo.crop_centre) return std::nullopt;
     if (!same_point(cloud.points[from - 1], memo.last) || labels[from - 1] != memo.last_label ||
@@ -61,15 +62,14 @@ std::optional<OccupancyGrid> extend_occupancy(OccupancyMemo& memo, const CloudVi
         // A registered point the grower did not index: not this cloud's labels; the index
         // anew says so.
         if (!grown[i]) return std::nullopt;
-        const Vec3d local = (tail.points[i].cast<double>() - grid.origin()) / grid.cube_size();
-        if (!(local.maxCoeff() < 2147483647.0)) return std::nullopt;  // ditto, too far
-        cells.push_back(grid.cell_of(tail.points[i].cast<double>()));
+        const CellCoords c = grid.cell_of(tail.points[i].cast<double>());
+        if (c.maxCoeff() >= 2147483647) return std::nullopt;  // ditto: too far (cell_of clamps)
+        cells.push_back(c);
     }
-    const std::uint64_t added = cells.size();
+    memo.registered += cells.size();
     memo.grid->add_registered(std::move(cells));
     memo.points = cloud.size();
     memo.grown_box = box;
-    memo.registered += added;
     memo.last = cloud.points.back();
     memo.last_label = labels.back();
     return memo.grid;
@@ -85,7 +85,6 @@ void remember_occupancy(OccupancyMemo& memo, const CloudView& cloud,
     memo.registered = registered_among(labels);
     memo.last = cloud.points.back();
     memo.last_label = labels.back();
-    memo.mu = config.mu;
     memo.crop = config.crop;
     if (config.crop.active()) memo.crop_centre = crop_centre(cloud, config);
     memo.grid = grid;

@@ -16,14 +16,14 @@
 
 namespace surfgrow {
 
-/// The grid of a cloud's first `points` points, and what decides whether a later cloud extends it.
+/// The grid of a cloud's first `points` points (its mu is the grid's), and what decides whether a
+/// later cloud extends it.
 struct OccupancyMemo {
     std::size_t points = 0;        ///< the cloud's first points it covers (0: none)
     Aabb grown_box;                ///< of their grown points (the index's bounds)
     std::uint64_t registered = 0;  ///< of them, labelled >= 0
     Vec3f last = Vec3f::Zero();    ///< the last covered point and its label, a spot check
     std::int32_t last_label = -1;
-    double mu = 0.0;
     WorkspaceCrop crop;
     Vec3d crop_centre = Vec3d::Zero();
     std::optional<OccupancyGrid> grid;
