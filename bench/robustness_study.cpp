@@ -10,7 +10,8 @@
 // (the noise and layer profiles), STUDY_BANDS (by range band and incidence), STUDY_KINDS (how the
 // points > 45 deg off went wrong; with STUDY_MIXED, the surfaces mostly of mixed pixels),
 // STUDY_MISSED (each face not detected, and the bound planes that hold it), STUDY_PLANE_ERR (the
-// bound planes more than 2 degrees off their face; STUDY_PLANE_PATCHES: their patches of other
+// bound planes more than 2 degrees, or STUDY_PLANE_ERR=D degrees, off their face;
+// STUDY_PLANE_PATCHES: their patches of other
 // faces), STUDY_NO_BRIDGE (bound planes without gap bridging), STUDY_FACES (by face;
 // with STUDY_SURFACES the worst surfaces, STUDY_AT=x,y,z the points near a spot,
 // STUDY_UNREG_FACE=id a face's unregistered points, STUDY_DUMP=id a surface's ball).
@@ -177,6 +178,9 @@ int main(int argc, char** argv) {
                         static_cast<unsigned long long>(r.stats.surfaces),
                         static_cast<unsigned long long>(r.stats.lone_surfaces));
                 if (std::getenv("STUDY_PLANE_ERR")) {
+                    const double plane_err_deg = std::atof(std::getenv("STUDY_PLANE_ERR")) > 0
+                                                     ? std::atof(std::getenv("STUDY_PLANE_ERR"))
+                                                     : 2.0;
                     // Each bound plane of over 500 points more than 2 degrees off the face most of
                     // its points lie on: the faces it holds; with STUDY_PLANE_PATCHES, its patches
                     // whose points lie mostly elsewhere.
@@ -211,7 +215,7 @@ int main(int argc, char** argv) {
                         const auto off_deg = [&](const Vec3d& n) {
                             return std::acos(std::min(1.0, std::abs(truth.dot(n)))) * 180 / M_PI;
                         };
-                        if (off_deg(bp.normal) <= 2) continue;
+                        if (off_deg(bp.normal) <= plane_err_deg) continue;
                         std::printf("      plane %d: %llu points, %.2f deg off face %d (%s):", q,
                                     (unsigned long long)total, off_deg(bp.normal), face,
                                     face_name(face));

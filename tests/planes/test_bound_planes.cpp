@@ -230,6 +230,34 @@ TEST(BoundPlanes, ParallelStripsAStepApartAcrossAGapStaySeparate) {
     EXPECT_LT(axis_angle_between(one[0]->normal, Vec3d::UnitZ()), 0.5 * kDeg);
 }
 
+TEST(BoundPlanes, PlatesAStepApartSideBySideAreNotBridgedByALeaningPlane) {
+    // A web and a splice plate 16 mm in front of it, side by side along x with 40 mm between
+    // them (the channel's fused scans): regions short along the line between them, so the plane
+    // through both centroids, leaning about 2 degrees, fits each within the offset (4.5 mm: a
+    // fused scan's). Pooled pieces of one plane give a blend of their normals; this lean lies off
+    // the arc between them. The same plates in one plane are one face.
+    auto plates = [](double step) {
+        const Rect plate{{0, 0, 0.5 + step}, Vec3d::UnitX(), Vec3d::UnitY(), 0.15, 0.2};
+        const Rect web{{0.39, 0, 0.5}, Vec3d::UnitX(), Vec3d::UnitY(), 0.2, 0.2};
+        return grow_rects({plate, web}, 0.001);
+    };
+    BoundPlaneConfig cfg;
+    cfg.max_offset = 0.0045;
+    const Grown stepped = plates(0.016);
+    const BoundPlanes apart = planes_of(stepped, cfg);
+    const auto two = major(apart);
+    ASSERT_EQ(two.size(), 2u);
+    for (const BoundPlane* bp : two) {
+        EXPECT_LT(axis_angle_between(bp->normal, Vec3d::UnitZ()), 0.3 * kDeg);
+        EXPECT_LT(bp->rms, 0.002);
+    }
+    const Grown flat = plates(0.0);
+    const BoundPlanes together = planes_of(flat, cfg);
+    const auto one = major(together);
+    ASSERT_EQ(one.size(), 1u);
+    EXPECT_LT(axis_angle_between(one[0]->normal, Vec3d::UnitZ()), 0.3 * kDeg);
+}
+
 TEST(BoundPlanes, ACylinderIsCutIntoStripsNotOnePlane) {
     // 300 mm radius, quarter turn: pooled moments stop the region drifting round the curve.
     Grown g;

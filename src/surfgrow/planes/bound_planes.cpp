@@ -165,6 +165,27 @@ double misfit(const CentredMoments& m, const Fit& own, const Fit& pooled, const 
     return std::sqrt(std::max(m.mean_square_distance(pooled.normal, at) - own.eigenvalues[0], 0.0));
 }
 
+// The step between two regions that their pooled plane hides by leaning: pooled pieces of one
+// plane give a normal on the arc between theirs; two parallel faces a step apart, side by side,
+// give a plane through both centroids, leaning off that arc by about the step over their
+// distance. The lean's share along the line between the centroids, times its length.
+double hidden_step(const Vec3d& na, const Vec3d& nb_in, const Vec3d& np_in, const Vec3d& a,
+                   const Vec3d& b) {
+    const Vec3d nb = nb_in.dot(na) < 0 ? Vec3d(-nb_in) : nb_in;
+    const Vec3d np = np_in.dot(na) < 0 ? Vec3d(-np_in) : np_in;
+    Vec3d on_arc = na;  // the arc's point nearest the pooled normal
+    const Vec3d axis = na.cross(nb);
+    if (axis.norm() > 1e-12) {
+        const Vec3d c = axis.normalized();
+        const Vec3d g = (np - np.dot(c) * c).normalized();
+        if (na.cross(g).dot(c) >= 0 && g.cross(nb).dot(c) >= 0)
+            on_arc = g;
+        else if (np.dot(nb) > np.dot(na))
+            on_arc = nb;
+    }
+    return std::abs((np - on_arc).dot(b - a));
+}
+
 // Coplanar regions whose patches come within max_gap of each other (a face seen in bands between
 // occlusion shadows, a plate behind a stiffener) are one face: merged when both planes and their
 // pooled fit agree in angle, and the pooled plane fits each within the offset (misfit). Pairs
@@ -260,6 +281,8 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
             continue;
         if (misfit(ma, fa, fp, pooled.mean) > cfg.max_offset ||
             misfit(mb, fb, fp, pooled.mean) > cfg.max_offset)
+            continue;
+        if (hidden_step(fa.normal, fb.normal, fp.normal, ma.mean, mb.mean) > 2 * cfg.max_offset)
             continue;
         const std::uint32_t keep = std::min(a, b), gone = std::max(a, b);
         parent[gone] = keep;
