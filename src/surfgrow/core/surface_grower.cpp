@@ -657,6 +657,8 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
 
     // --- Stage 3: attach leftovers to the best-fitting neighbouring surface.
     const GrowContext late{index, cfg, labels, {}, sight, noise, layers};  // distances released
+    std::vector<std::int32_t> grown_labels;  // what growing registered (stage 3b's last step)
+    if (strips) grown_labels.assign(labels.begin(), labels.end());
     if (cfg.attach_leftovers && surface_count > 0)
         attach_leftovers(late, slabs, result.surfaces, tolerance, threads, labels);
     // --- Stage 3b: strips narrower than a ball, from the points no surface fits (`strips`: where).
@@ -670,6 +672,15 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
         attach_leftovers(late, slabs, result.surfaces, tolerance, threads, labels, first_strip);
         // ... and farther along its face, step by step (the far ends of a flange's edge).
         extend_strips(late, first_strip, result.surfaces, tolerance);
+    }
+    // ... and, where strips grow (single scans), every surface reaches along its face as they do,
+    // from the points registered since growing (a far wall at grazing incidence).
+    if (strips) {
+        std::vector<std::uint32_t> frontier;
+        for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(n); ++i)
+            if (grown_labels[i] < 0 && labels[i] >= 0) frontier.push_back(i);
+        release(grown_labels);
+        extend_surfaces(late, result.surfaces, tolerance, std::move(frontier));
     }
     // --- Stage 3c (fused clouds): points along edges to the face their own scan's layer fits.
     if (cfg.attach_leftovers && cfg.plane_test == PlaneTest::kDisk && surface_count > 0)

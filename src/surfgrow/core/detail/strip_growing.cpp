@@ -255,70 +255,82 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::span<const Slab> slabs, i
     return grown;
 }
 
-std::int64_t extend_strips(const GrowContext& ctx, std::int32_t first_strip,
-                           std::vector<Surface>& surfaces, std::span<const double> tolerance) {
+namespace {
+
+// Round by round, each leftover within reach of a point taken in the round before (the first
+// round: of `frontier`) and within its tolerance of that point's surface's plane joins the
+// surface it fits best (ties by number). Only surfaces `first` on take points. With `refit`,
+// each surface's plane is refitted to all its members round by round, a surface that reached
+// farther keeps it, and its members beyond its tolerance of it are left out; without, every
+// surface keeps its plane. Returns the members gained (less those left out).
+std::int64_t extend_along_faces(const GrowContext& ctx, std::int32_t first,
+                                std::vector<Surface>& surfaces, std::span<const double> tolerance,
+                                std::vector<std::uint32_t> frontier, bool refit) {
     const CubeIndex& index = ctx.index;
     const std::span<std::int32_t> labels = ctx.labels;
-    // A strip reaches from each member as far as the leftover pass reaches beside surfaces, or
-    // as its own ball where that is wider: its ball grew to hold enough of it, so beyond the
+    // A surface reaches from each member as far as the leftover pass reaches beside surfaces, or
+    // as its own ball where that is wider: its ball grew to hold enough points, so beyond the
     // sensor's spacing there (a far edge seen at grazing incidence: 25-30 mm between lines).
     const double cell = kMissRadiusPerMu * ctx.config.mu;
     const LeftoverCells left(index, labels, cell);
-    // Each strip's plane refitted to all its members, round by round: along a long strip its
-    // normal, fitted to the first ball, leans by a few degrees, which a few ball lengths farther
-    // puts the face outside the tolerance.
-    const auto strips = surfaces.size() - static_cast<std::size_t>(first_strip);
-    std::vector<Moments> moments(strips);
-    std::vector<Vec3d> normal(strips), centre(strips);
-    std::vector<std::uint8_t> grew(strips, 0), extended(strips, 0);
+    // With `refit`, each surface's plane refitted to all its members, round by round: along a
+    // long strip its normal, fitted to the first ball, leans by a few degrees, which a few ball
+    // lengths farther puts the face outside the tolerance.
+    const auto count = refit ? surfaces.size() - static_cast<std::size_t>(first) : 0;
+    std::vector<Moments> moments(count);
+    std::vector<Vec3d> normal(count), centre(count);
+    std::vector<std::uint8_t> grew(count, 0), extended(count, 0);
     auto add = [&](std::uint32_t i) {
-        const auto k = static_cast<std::size_t>(labels[i] - first_strip);
-        moments[k].add(index.world_point(i) -
-                       surfaces[k + static_cast<std::size_t>(first_strip)].home);
+        if (!refit) return;
+        const auto k = static_cast<std::size_t>(labels[i] - first);
+        moments[k].add(index.world_point(i) - surfaces[k + static_cast<std::size_t>(first)].home);
         grew[k] = 1;
     };
-    auto refit = [&] {
-        for (std::size_t k = 0; k < strips; ++k)
+    auto refit_grown = [&] {
+        for (std::size_t k = 0; k < count; ++k)
             if (grew[k]) {
                 const PlaneFit fit = fit_plane(moments[k]);
                 normal[k] = fit.normal;
-                centre[k] = surfaces[k + static_cast<std::size_t>(first_strip)].home + fit.centroid;
+                centre[k] = surfaces[k + static_cast<std::size_t>(first)].home + fit.centroid;
                 grew[k] = 0;
             }
     };
-    std::vector<std::uint32_t> frontier;
-    for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(index.size()); ++i)
-        if (labels[i] >= first_strip) {
-            frontier.push_back(i);
-            add(i);
-        }
+    auto plane_of = [&](std::int32_t sid) -> std::pair<const Vec3d&, const Vec3d&> {
+        if (!refit)
+            return {surfaces[static_cast<std::size_t>(sid)].normal,
+                    surfaces[static_cast<std::size_t>(sid)].centroid};
+        const auto k = static_cast<std::size_t>(sid - first);
+        return {normal[k], centre[k]};
+    };
+    if (refit)
+        for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(index.size()); ++i)
+            if (labels[i] >= first) add(i);
     struct Offer {
         std::uint32_t point;
         double distance;
-        std::int32_t strip;
+        std::int32_t surface;
         bool operator<(const Offer& o) const {
             if (point != o.point) return point < o.point;
-            return distance < o.distance || (distance == o.distance && strip < o.strip);
+            return distance < o.distance || (distance == o.distance && surface < o.surface);
         }
     };
     std::vector<Offer> offers;
     std::int64_t gained = 0;
     while (!frontier.empty()) {
-        refit();
+        refit_grown();
         offers.clear();
         // The frontier is in index order, so neighbours share a cell: the leftovers around a
-        // strip's cell, still offered to none of its points, are gathered once for them all.
+        // surface's cell, still offered to none of its points, are gathered once for them all.
         std::vector<std::uint32_t> near;
-        std::int32_t near_strip = -1;
+        std::int32_t near_surface = -1;
         LeftoverCells::Cell near_cell{};
         for (const std::uint32_t f : frontier) {
             const std::int32_t sid = labels[f];
-            const auto k = static_cast<std::size_t>(sid - first_strip);
             const double step = std::max(cell, surfaces[static_cast<std::size_t>(sid)].radius);
             const Vec3f p = index.local_point(f);
             const LeftoverCells::Cell c = left.cell_of(p);
-            if (sid != near_strip || c != near_cell) {
-                near_strip = sid;
+            if (sid != near_surface || c != near_cell) {
+                near_surface = sid;
                 near_cell = c;
                 near.clear();
                 const auto rings = static_cast<std::int64_t>(std::ceil(step / cell - 1e-9));
@@ -330,6 +342,7 @@ std::int64_t extend_strips(const GrowContext& ctx, std::int32_t first_strip,
                                      });
             }
             const double tol = tolerance[static_cast<std::size_t>(sid)];
+            const auto [n, o] = plane_of(sid);
             const auto step2 = static_cast<float>(step * step);
             for (std::size_t j = 0; j < near.size();) {
                 const std::uint32_t q = near[j];
@@ -337,37 +350,37 @@ std::int64_t extend_strips(const GrowContext& ctx, std::int32_t first_strip,
                     ++j;
                     continue;
                 }
-                const double d = std::abs(normal[k].dot(index.world_point(q) - centre[k]));
+                const double d = std::abs(n.dot(index.world_point(q) - o));
                 if (d <= tol) offers.push_back({q, d, sid});
-                near[j] = near.back();  // judged for this strip: no other of its points asks again
+                near[j] = near.back();  // judged for this surface: no other of its points asks
                 near.pop_back();
             }
         }
-        // Each point to the strip it fits best (ties by number), all at once: the same for any
+        // Each point to the surface it fits best (ties by number), all at once: the same for any
         // order of the frontier.
         std::sort(offers.begin(), offers.end());
         frontier.clear();
         for (std::size_t k = 0; k < offers.size(); ++k)
             if (k == 0 || offers[k].point != offers[k - 1].point) {
-                labels[offers[k].point] = offers[k].strip;
+                labels[offers[k].point] = offers[k].surface;
                 frontier.push_back(offers[k].point);
                 add(offers[k].point);
-                extended[static_cast<std::size_t>(offers[k].strip - first_strip)] = 1;
+                if (refit) extended[static_cast<std::size_t>(offers[k].surface - first)] = 1;
             }
         gained += static_cast<std::int64_t>(frontier.size());
     }
-    // A strip that reached farther takes the plane of all its members (as pooling refines a
+    if (!refit) return gained;
+    // A surface that reached farther takes the plane of all its members (as pooling refines a
     // disk's normal), and keeps those within its tolerance of it: every member of a surface lies
     // within its tolerance of its plane.
-    for (std::size_t k = 0; k < strips; ++k)
+    for (std::size_t k = 0; k < count; ++k)
         if (extended[k]) {
-            Surface& strip = surfaces[k + static_cast<std::size_t>(first_strip)];
+            Surface& strip = surfaces[k + static_cast<std::size_t>(first)];
             strip.normal = normal[k];
             strip.centroid = centre[k];
         }
     for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(index.size()); ++i) {
-        if (labels[i] < first_strip || !extended[static_cast<std::size_t>(labels[i] - first_strip)])
-            continue;
+        if (labels[i] < first || !extended[static_cast<std::size_t>(labels[i] - first)]) continue;
         const auto sid = static_cast<std::size_t>(labels[i]);
         const Surface& strip = surfaces[sid];
         if (std::abs(strip.normal.dot(index.world_point(i) - strip.centroid)) > tolerance[sid]) {
@@ -376,6 +389,22 @@ std::int64_t extend_strips(const GrowContext& ctx, std::int32_t first_strip,
         }
     }
     return gained;
+}
+
+}  // namespace
+
+std::int64_t extend_strips(const GrowContext& ctx, std::int32_t first_strip,
+                           std::vector<Surface>& surfaces, std::span<const double> tolerance) {
+    std::vector<std::uint32_t> frontier;
+    for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(ctx.index.size()); ++i)
+        if (ctx.labels[i] >= first_strip) frontier.push_back(i);
+    return extend_along_faces(ctx, first_strip, surfaces, tolerance, std::move(frontier), true);
+}
+
+std::int64_t extend_surfaces(const GrowContext& ctx, std::vector<Surface>& surfaces,
+                             std::span<const double> tolerance,
+                             std::vector<std::uint32_t> frontier) {
+    return extend_along_faces(ctx, 0, surfaces, tolerance, std::move(frontier), false);
 }
 
 }  // namespace surfgrow::detail
