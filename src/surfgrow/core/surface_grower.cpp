@@ -657,8 +657,9 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
 
     // --- Stage 3: attach leftovers to the best-fitting neighbouring surface.
     const GrowContext late{index, cfg, labels, {}, sight, noise, layers};  // distances released
-    std::vector<std::int32_t> grown_labels;  // what growing registered (stage 3b's last step)
-    if (strips) grown_labels.assign(labels.begin(), labels.end());
+    std::vector<std::int32_t> grown_labels;  // what growing registered (for stage 3b's last step)
+    const bool extend = cfg.plane_test == PlaneTest::kDisk && cfg.attach_leftovers;
+    if (extend) grown_labels.assign(labels.begin(), labels.end());
     if (cfg.attach_leftovers && surface_count > 0)
         attach_leftovers(late, slabs, result.surfaces, tolerance, threads, labels);
     // --- Stage 3b: strips narrower than a ball, from the points no surface fits (`strips`: where).
@@ -673,9 +674,9 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
         // ... and farther along its face, step by step (the far ends of a flange's edge).
         extend_strips(late, first_strip, result.surfaces, tolerance);
     }
-    // ... and, where strips grow (single scans), every surface reaches along its face as they do,
-    // from the points registered since growing (a far wall at grazing incidence).
-    if (strips) {
+    // ... and every surface reaches along its face as strips do, from the points registered since
+    // growing (a far wall at grazing incidence; in fused clouds too, where no strips grow).
+    if (extend) {
         std::vector<std::uint32_t> frontier;
         for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(n); ++i)
             if (grown_labels[i] < 0 && labels[i] >= 0) frontier.push_back(i);

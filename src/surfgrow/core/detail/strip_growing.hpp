@@ -41,12 +41,13 @@ std::uint64_t grow_strips(const GrowContext& ctx, std::span<const Slab> slabs, i
 std::int64_t extend_strips(const GrowContext& ctx, std::int32_t first_strip,
                            std::vector<Surface>& surfaces, std::span<const double> tolerance);
 
-/// Stage 3b's last step (where strips grow): every surface reaches along its face as strips do, by
-/// the same rounds, from the points registered since growing (`frontier`, sorted): a far face seen
-/// at grazing incidence (the stairs' side wall at 3.5-4 m, 76 degrees) is points 50-100 mm apart,
-/// out of one leftover pass's reach of the surfaces grown nearer, yet in their plane. A surface
-/// keeps its plane (its normal was pooled); each point joins the surface it fits best. Serial
-/// and in point order: the same for any thread count. Returns the points registered.
+/// Stage 3b's last step (the disk test with the leftover pass, fused clouds too): every surface
+/// reaches along its face as strips do, by the same rounds, from the points registered since
+/// growing (`frontier`, sorted): a far face seen at grazing incidence (the stairs' side wall at
+/// 3.5-4 m, 76 degrees) is points 50-100 mm apart, out of one leftover pass's reach of the
+/// surfaces grown nearer, yet in their plane. A surface keeps its plane (its normal was pooled);
+/// each point joins the surface it fits best. Serial and in point order: the same for any thread
+/// count. Returns the points registered.
 std::int64_t extend_surfaces(const GrowContext& ctx, std::vector<Surface>& surfaces,
                              std::span<const double> tolerance,
                              std::vector<std::uint32_t> frontier);
