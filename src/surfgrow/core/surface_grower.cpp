@@ -657,9 +657,11 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
 
     // --- Stage 3: attach leftovers to the best-fitting neighbouring surface.
     const GrowContext late{index, cfg, labels, {}, sight, noise, layers};  // distances released
-    std::vector<std::int32_t> grown_labels;  // what growing registered (for stage 3b's last step)
+    // The points growing left unregistered (a byte each): stage 3b's last step reaches on from
+    // those the later stages register.
     const bool extend = cfg.plane_test == PlaneTest::kDisk && cfg.attach_leftovers;
-    if (extend) grown_labels.assign(labels.begin(), labels.end());
+    std::vector<std::uint8_t> was_left(extend ? n : 0, 0);
+    for (std::size_t i = 0; i < was_left.size(); ++i) was_left[i] = labels[i] < 0 ? 1 : 0;
     if (cfg.attach_leftovers && surface_count > 0)
         attach_leftovers(late, slabs, result.surfaces, tolerance, threads, labels);
     // --- Stage 3b: strips narrower than a ball, from the points no surface fits (`strips`: where).
@@ -679,8 +681,8 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
     if (extend) {
         std::vector<std::uint32_t> frontier;
         for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(n); ++i)
-            if (grown_labels[i] < 0 && labels[i] >= 0) frontier.push_back(i);
-        release(grown_labels);
+            if (was_left[i] && labels[i] >= 0) frontier.push_back(i);
+        release(was_left);
         extend_surfaces(late, result.surfaces, tolerance, std::move(frontier));
     }
     // --- Stage 3c (fused clouds): points along edges to the face their own scan's layer fits.

@@ -177,7 +177,8 @@ double hidden_step(const Vec3d& na, const Vec3d& nb_in, const Vec3d& np_in, cons
     const Vec3d axis = na.cross(nb);
     if (axis.norm() > 1e-12) {
         const Vec3d c = axis.normalized();
-        const Vec3d g = (np - np.dot(c) * c).normalized();
+        const Vec3d in_plane = np - np.dot(c) * c;  // none only 90 degrees from both
+        const Vec3d g = in_plane.norm() > 1e-12 ? Vec3d(in_plane.normalized()) : na;
         if (na.cross(g).dot(c) >= 0 && g.cross(nb).dot(c) >= 0)
             on_arc = g;
         else if (np.dot(nb) > np.dot(na))
