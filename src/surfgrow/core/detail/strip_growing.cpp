@@ -266,6 +266,7 @@ namespace {
 std::int64_t extend_along_faces(const GrowContext& ctx, std::int32_t first,
                                 std::vector<Surface>& surfaces, std::span<const double> tolerance,
                                 std::vector<std::uint32_t> frontier, bool refit) {
+    if (frontier.empty()) return 0;  // no round would take a point, and none reached farther
     const CubeIndex& index = ctx.index;
     const std::span<std::int32_t> labels = ctx.labels;
     // A surface reaches from each member as far as the leftover pass reaches beside surfaces, or
