@@ -11,10 +11,10 @@
 // points > 45 deg off went wrong; with STUDY_MIXED, the surfaces mostly of mixed pixels),
 // STUDY_MISSED (each face not detected, and the bound planes that hold it), STUDY_PLANE_ERR (the
 // bound planes more than 2 degrees, or STUDY_PLANE_ERR=D degrees, off their face;
-// STUDY_PLANE_PATCHES: their patches of other
-// faces), STUDY_NO_BRIDGE (bound planes without gap bridging), STUDY_FACES (by face;
-// with STUDY_SURFACES the worst surfaces, STUDY_AT=x,y,z the points near a spot,
-// STUDY_UNREG_FACE=id a face's unregistered points, STUDY_DUMP=id a surface's ball).
+// STUDY_PLANE_PATCHES: their patches of other faces), STUDY_NO_BRIDGE (bound planes without gap
+// bridging), STUDY_FACES (by face; with STUDY_SURFACES the worst surfaces, STUDY_AT=x,y,z the
+// points near a spot, STUDY_UNREG_FACE=id a face's unregistered points, STUDY_DUMP=id a surface's
+// ball).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -178,12 +178,11 @@ int main(int argc, char** argv) {
                         static_cast<unsigned long long>(r.stats.surfaces),
                         static_cast<unsigned long long>(r.stats.lone_surfaces));
                 if (std::getenv("STUDY_PLANE_ERR")) {
-                    const double plane_err_deg = std::atof(std::getenv("STUDY_PLANE_ERR")) > 0
-                                                     ? std::atof(std::getenv("STUDY_PLANE_ERR"))
-                                                     : 2.0;
-                    // Each bound plane of over 500 points more than 2 degrees off the face most of
-                    // its points lie on: the faces it holds; with STUDY_PLANE_PATCHES, its patches
-                    // whose points lie mostly elsewhere.
+                    const double given = std::atof(std::getenv("STUDY_PLANE_ERR"));
+                    const double plane_err_deg = given > 0 ? given : 2.0;
+                    // Each bound plane of over 500 points more than that many degrees off the face
+                    // most of its points lie on: the faces it holds; with STUDY_PLANE_PATCHES, its
+                    // patches whose points lie mostly elsewhere.
                     const std::vector<std::int32_t> pl = plane_labels(planes, r.labels);
                     std::map<std::int32_t, std::map<std::int32_t, std::uint64_t>> by_plane,
                         by_patch;

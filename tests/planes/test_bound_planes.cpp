@@ -203,6 +203,26 @@ TEST(BoundPlanes, ParallelPlatesAStepApartStaySeparate) {
     EXPECT_NEAR(faces[1]->centroid.z(), 0.52, 1e-3);
 }
 
+// Two horizontal pieces a step apart, then the same in one plane (`pieces(step)` grows them):
+// apart, two planes, each within `max_angle` of flat and its own noise thin; together, one plane
+// within `max_angle` of flat.
+void expect_apart_at_a_step_one_without(const std::function<Grown(double)>& pieces, double step,
+                                        const BoundPlaneConfig& cfg, double max_angle) {
+    const Grown stepped = pieces(step);
+    const BoundPlanes apart = planes_of(stepped, cfg);
+    const auto two = major(apart);
+    ASSERT_EQ(two.size(), 2u);
+    for (const BoundPlane* bp : two) {
+        EXPECT_LT(axis_angle_between(bp->normal, Vec3d::UnitZ()), max_angle);
+        EXPECT_LT(bp->rms, 0.002);
+    }
+    const Grown flat = pieces(0.0);
+    const BoundPlanes together = planes_of(flat, cfg);
+    const auto one = major(together);
+    ASSERT_EQ(one.size(), 1u);
+    EXPECT_LT(axis_angle_between(one[0]->normal, Vec3d::UnitZ()), max_angle);
+}
+
 TEST(BoundPlanes, ParallelStripsAStepApartAcrossAGapStaySeparate) {
     // A valve body's face and the pipe behind it: parallel, 30 mm apart, 40 mm between them
     // (within the gap bridging's reach). A plane tilted 5 degrees passes within the offset of
@@ -215,19 +235,7 @@ TEST(BoundPlanes, ParallelStripsAStepApartAcrossAGapStaySeparate) {
     };
     BoundPlaneConfig cfg;
     cfg.max_offset = 0.006;
-    const Grown stepped = strips(0.03);
-    const BoundPlanes apart = planes_of(stepped, cfg);
-    const auto two = major(apart);
-    ASSERT_EQ(two.size(), 2u);
-    for (const BoundPlane* bp : two) {
-        EXPECT_LT(axis_angle_between(bp->normal, Vec3d::UnitZ()), 0.5 * kDeg);
-        EXPECT_LT(bp->rms, 0.002);
-    }
-    const Grown flat = strips(0.0);
-    const BoundPlanes together = planes_of(flat, cfg);
-    const auto one = major(together);
-    ASSERT_EQ(one.size(), 1u);
-    EXPECT_LT(axis_angle_between(one[0]->normal, Vec3d::UnitZ()), 0.5 * kDeg);
+    expect_apart_at_a_step_one_without(strips, 0.03, cfg, 0.5 * kDeg);
 }
 
 TEST(BoundPlanes, PlatesAStepApartSideBySideAreNotBridgedByALeaningPlane) {
@@ -243,19 +251,7 @@ TEST(BoundPlanes, PlatesAStepApartSideBySideAreNotBridgedByALeaningPlane) {
     };
     BoundPlaneConfig cfg;
     cfg.max_offset = 0.0045;
-    const Grown stepped = plates(0.016);
-    const BoundPlanes apart = planes_of(stepped, cfg);
-    const auto two = major(apart);
-    ASSERT_EQ(two.size(), 2u);
-    for (const BoundPlane* bp : two) {
-        EXPECT_LT(axis_angle_between(bp->normal, Vec3d::UnitZ()), 0.3 * kDeg);
-        EXPECT_LT(bp->rms, 0.002);
-    }
-    const Grown flat = plates(0.0);
-    const BoundPlanes together = planes_of(flat, cfg);
-    const auto one = major(together);
-    ASSERT_EQ(one.size(), 1u);
-    EXPECT_LT(axis_angle_between(one[0]->normal, Vec3d::UnitZ()), 0.3 * kDeg);
+    expect_apart_at_a_step_one_without(plates, 0.016, cfg, 0.3 * kDeg);
 }
 
 TEST(BoundPlanes, ACylinderIsCutIntoStripsNotOnePlane) {

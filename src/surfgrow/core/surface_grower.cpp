@@ -632,8 +632,10 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
     // registration, serially; docs/algorithm.md). Room for them from the start: growing the
     // vectors later copies every surface into fresh pages, which cost 7 ms of a 75 ms growing in
     // this VM. A strip's first ball holds min_pts leftovers; room never touched costs no memory.
-    const bool strips =
-        cfg.plane_test == PlaneTest::kDisk && cfg.attach_leftovers && !sight.fused();
+    // The disk test's passes after growing (the leftovers, surfaces reaching along their faces,
+    // the edge pass); strips among them only where scans are not fused.
+    const bool disk_passes = cfg.plane_test == PlaneTest::kDisk && cfg.attach_leftovers;
+    const bool strips = disk_passes && !sight.fused();
     const std::size_t room =
         surface_count +
         (strips ? static_cast<std::size_t>(std::count(labels.begin(), labels.end(), -1)) /
@@ -659,8 +661,7 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
     const GrowContext late{index, cfg, labels, {}, sight, noise, layers};  // distances released
     // The points growing left unregistered (a byte each): stage 3b's last step reaches on from
     // those the later stages register.
-    const bool extend = cfg.plane_test == PlaneTest::kDisk && cfg.attach_leftovers;
-    std::vector<std::uint8_t> was_left(extend ? n : 0, 0);
+    std::vector<std::uint8_t> was_left(disk_passes ? n : 0, 0);
     for (std::size_t i = 0; i < was_left.size(); ++i) was_left[i] = labels[i] < 0 ? 1 : 0;
     if (cfg.attach_leftovers && surface_count > 0)
         attach_leftovers(late, slabs, result.surfaces, tolerance, threads, labels);
@@ -678,7 +679,7 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
     }
     // ... and every surface reaches along its face as strips do, from the points registered since
     // growing (a far wall at grazing incidence; in fused clouds too, where no strips grow).
-    if (extend) {
+    if (disk_passes) {
         std::vector<std::uint32_t> frontier;
         for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(n); ++i)
             if (was_left[i] && labels[i] >= 0) frontier.push_back(i);
@@ -686,7 +687,7 @@ GrowResult SurfaceGrower::grow(const CloudView& cloud, const GrowIndex& grow_ind
         extend_surfaces(late, result.surfaces, tolerance, std::move(frontier));
     }
     // --- Stage 3c (fused clouds): points along edges to the face their own scan's layer fits.
-    if (cfg.attach_leftovers && cfg.plane_test == PlaneTest::kDisk && surface_count > 0)
+    if (disk_passes && surface_count > 0)
         st.edge_moves = reassign_at_edges(late, slabs, result.surfaces, tolerance, threads, labels);
     st.seconds.attach = stage.lap();
     report("attach", 1.0);
