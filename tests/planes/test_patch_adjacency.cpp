@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "surfgrow/planes/bound_plane_memo.hpp"
 #include "surfgrow/planes/patch_adjacency.hpp"
 #include "surfgrow/planes/patch_members.hpp"
 
@@ -195,6 +196,71 @@ TEST(PatchMembers, EachSurfacesPointsInInputOrderForAnyThreadCount) {
         }
         EXPECT_TRUE(m.of(5).empty());
     }
+}
+
+TEST(PatchMembers, ExtendedByLaterPointsAreTheListsCollectedAnew) {
+    // A map's cloud: 3000 points with 4 surfaces, then 2000 more whose labels reach 6 surfaces
+    // (old ones gain points, new ones appear, one old surface gains none).
+    std::vector<Vec3f> points;
+    std::vector<std::int32_t> labels;
+    for (std::uint32_t i = 0; i < 5000; ++i) {
+        const float x = static_cast<float>(i);
+        points.emplace_back(x, i % 89 == 0 ? std::nanf("") : 2 * x, 0.f);
+        const std::uint32_t h = (i * 2654435761u) >> 24;
+        labels.push_back(h % 7 == 0 ? -1 : static_cast<std::int32_t>(i < 3000 ? h % 4 : h % 6));
+        if (i >= 3000 && labels.back() == 2) labels.back() = 5;
+    }
+    const std::span<const Vec3f> first_points(points.data(), 3000);
+    const std::span<const std::int32_t> first_labels(labels.data(), 3000);
+    for (const int threads : {1, 2, 3}) {
+        const PatchMembers truth = collect_patch_members(points, labels, 6, threads);
+        const PatchMembers got =
+            extend_patch_members(collect_patch_members(first_points, first_labels, 4, threads),
+                                 points, labels, 3000, 6, threads);
+        EXPECT_EQ(got.offset, truth.offset) << threads << " threads";
+        EXPECT_EQ(got.index, truth.index) << threads << " threads";
+        EXPECT_TRUE(got.point == truth.point) << threads << " threads";
+        // Extended by nothing: the same lists.
+        const PatchMembers same = extend_patch_members(truth, points, labels, 5000, 6, threads);
+        EXPECT_EQ(same.index, truth.index);
+    }
+}
+
+TEST(PatchMembers, AMemoOfAnotherCloudIsNotExtended) {
+    // The memo of a cloud's first 300 points; the cloud then grows by 200. Extended where the
+    // first 300 are those it saw; collected anew where a label among them changed.
+    std::vector<Vec3f> points;
+    std::vector<std::int32_t> labels;
+    for (std::uint32_t i = 0; i < 500; ++i) {
+        points.emplace_back(static_cast<float>(i), 0.f, 0.f);
+        labels.push_back(static_cast<std::int32_t>(i % 3));
+    }
+    auto memo_of = [&](std::span<const std::int32_t> seen) {
+        BoundPlaneMemo memo;
+        memo.members = collect_patch_members(std::span(points).first(300), seen.first(300), 3);
+        memo.member_points = 300;
+        for (std::size_t s = 0; s < 3; ++s) {
+            memo.counts.push_back(static_cast<std::uint32_t>(memo.members.of(s).size()));
+            memo.last.push_back(memo.members.of(s).back());
+        }
+        return memo;
+    };
+    const PatchMembers truth = collect_patch_members(points, labels, 3);
+    BoundPlaneMemo memo = memo_of(labels);
+    EXPECT_EQ(patch_members(memo, points, labels, 3, 1).index, truth.index);
+    EXPECT_TRUE(memo.members.index.empty());  // taken out: remembered again after the call
+    EXPECT_EQ(memo.member_points, 0u);
+    // Patch 0's last point in the memo's cloud now belongs to patch 1.
+    std::vector<std::int32_t> changed = labels;
+    changed[297] = 1;
+    memo = memo_of(labels);
+    EXPECT_EQ(patch_members(memo, points, changed, 3, 1).index,
+              collect_patch_members(points, changed, 3).index);
+    // A shorter cloud than the memo's.
+    memo = memo_of(labels);
+    EXPECT_EQ(
+        patch_members(memo, std::span(points).first(200), std::span(labels).first(200), 3, 1).index,
+        collect_patch_members(std::span(points).first(200), std::span(labels).first(200), 3).index);
 }
 
 TEST(PatchAdjacency, MembersAloneMakeNeighboursAcrossAnyHomeDistance) {

@@ -15,6 +15,28 @@ bool same_bits(const CentredMoments& a, const CentredMoments& b) {
 
 }  // namespace
 
+PatchMembers patch_members(BoundPlaneMemo& memo, std::span<const Vec3f> points,
+                           std::span<const std::int32_t> labels, std::size_t surfaces,
+                           int threads) {
+    PatchMembers old = std::move(memo.members);
+    memo.members = {};
+    const std::size_t from = std::exchange(memo.member_points, 0);
+    const std::size_t known = old.offset.empty() ? 0 : old.offset.size() - 1;
+    bool same =
+        from > 0 && from <= labels.size() && known <= surfaces && known == memo.counts.size();
+    for (std::size_t s = 0; same && s < known; ++s) {
+        const std::uint32_t c = old.offset[s + 1] - old.offset[s];
+        if (c != memo.counts[s]) same = false;
+        if (!same || c == 0) continue;
+        const std::uint32_t last = old.index[old.offset[s + 1] - 1];
+        same = last == memo.last[s] && last < from &&
+               labels[last] == static_cast<std::int32_t>(s) &&
+               points[last] == old.point[old.offset[s + 1] - 1];
+    }
+    if (!same) return collect_patch_members(points, labels, surfaces, threads);
+    return extend_patch_members(std::move(old), points, labels, from, surfaces, threads);
+}
+
 KnownMembers known_members(const BoundPlaneMemo& memo, const PatchMembers& members,
                            std::span<const Surface> surfaces) {
     const std::size_t ns = surfaces.size();

@@ -1,7 +1,8 @@
 // What bound planes keep from one call to the next on a map (pipeline/map.hpp), whose patches
-// only gain points, at the end of the cloud: each patch's moments and box and which patches touch
-// are recomputed only where a patch gained members, and a region made of the same unchanged
-// patches keeps its plane. The result has the same bits as computing everything anew.
+// only gain points, at the end of the cloud: the member lists are extended by the new points,
+// each patch's moments and box and which patches touch are recomputed only where a patch gained
+// members, and a region made of the same unchanged patches keeps its plane. The result has the
+// same bits as computing everything anew.
 #pragma once
 
 #include <cstdint>
@@ -42,7 +43,19 @@ struct BoundPlaneMemo {
     double resolution = -1, closing_radius = -1, simplify_tolerance = -1;
     std::vector<FittedRegion> regions;
     std::vector<std::int32_t> region_from;  ///< per patch, the region it is the first patch of
+    /// The member lists of the cloud's first `member_points` points, kept from the end of the
+    /// last call: the next extends them by the points after (patch_members).
+    PatchMembers members;
+    std::size_t member_points = 0;
 };
+
+/// The member lists of (points, labels): the memo's, taken out of it and extended by the points
+/// after those it covers, where it describes the same cloud (every patch it knows has as many
+/// members, and its last is the same point with the same label); else collected anew. The same
+/// lists either way.
+[[nodiscard]] PatchMembers patch_members(BoundPlaneMemo& memo, std::span<const Vec3f> points,
+                                         std::span<const std::int32_t> labels, std::size_t surfaces,
+                                         int threads);
 
 /// For each patch of (members, surfaces), how many of its first members the memo already holds:
 /// its count in the memo where the patch is the memo's (the same home, normal, radius and

@@ -641,9 +641,10 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
     out.plane_of_patch.assign(ns, -1);
     out.stats.patches = ns;
 
-    // Member points and their moments per patch (from the memo's sums on, where it has them);
-    // the defaults that depend on the noise.
-    const PatchMembers members = collect_patch_members(cloud.points, labels, ns, threads);
+    // Member points (the memo's lists extended by the new points) and their moments per patch
+    // (from the memo's sums on, where it has them); the defaults that depend on the noise.
+    PatchMembers members = memo ? patch_members(*memo, cloud.points, labels, ns, threads)
+                                : collect_patch_members(cloud.points, labels, ns, threads);
     const BoundPlaneMemo none;
     const BoundPlaneMemo& recall = memo ? *memo : none;
     const KnownMembers known = known_members(recall, members, surfaces);
@@ -696,7 +697,11 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
                                           regions.moments[r], regions.judges[r], cfg);
         });
     errors.rethrow();
-    if (memo) remember_planes(*memo, ns, regions.moments, regions.judges, planes, cfg);
+    if (memo) {
+        remember_planes(*memo, ns, regions.moments, regions.judges, planes, cfg);
+        memo->members = std::move(members);
+        memo->member_points = labels.size();
+    }
     publish_planes(planes, out);
     return out;
 }

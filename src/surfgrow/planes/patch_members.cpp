@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstring>
 #include <utility>
 
 namespace surfgrow {
@@ -45,6 +46,46 @@ PatchMembers collect_patch_members(std::span<const Vec3f> points,
                 m.point[j] = points[i];
             }
     }
+    return m;
+}
+
+PatchMembers extend_patch_members(PatchMembers old, std::span<const Vec3f> points,
+                                  std::span<const std::int32_t> labels, std::size_t from,
+                                  std::size_t surfaces, int threads) {
+    const std::size_t n = labels.size();
+    const std::size_t known = old.offset.empty() ? 0 : old.offset.size() - 1;
+    // The new points' counts (few: one scan), then each list's new start.
+    std::vector<std::uint32_t> at(surfaces, 0);
+    auto member = [&](std::size_t i) { return labels[i] >= 0 && is_finite(points[i]); };
+    for (std::size_t i = from; i < n; ++i)
+        if (member(i)) ++at[static_cast<std::size_t>(labels[i])];
+    PatchMembers m;
+    m.offset.assign(surfaces + 1, 0);
+    std::uint32_t next = 0;
+    for (std::size_t s = 0; s < surfaces; ++s) {
+        m.offset[s] = next;
+        const std::uint32_t had = s < known ? old.offset[s + 1] - old.offset[s] : 0;
+        next += had + std::exchange(at[s], next + had);  // at[s]: where its new points go
+    }
+    m.offset[surfaces] = next;
+    m.index.resize(next);
+    m.point.resize(next);
+    // The old lists whole, each at its new start: sequential copies, not a scatter of millions.
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 4096)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(known); ++k) {
+        const auto s = static_cast<std::size_t>(k);
+        const std::uint32_t a = old.offset[s], len = old.offset[s + 1] - a;
+        if (len == 0) continue;
+        std::memcpy(m.index.data() + m.offset[s], old.index.data() + a,
+                    len * sizeof(std::uint32_t));
+        std::copy_n(old.point.data() + a, len, m.point.data() + m.offset[s]);
+    }
+    for (std::size_t i = from; i < n; ++i)
+        if (member(i)) {
+            const std::uint32_t j = at[static_cast<std::size_t>(labels[i])]++;
+            m.index[j] = static_cast<std::uint32_t>(i);
+            m.point[j] = points[i];
+        }
     return m;
 }
 

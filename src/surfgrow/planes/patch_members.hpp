@@ -32,4 +32,13 @@ struct PatchMembers {
                                                  std::span<const std::int32_t> labels,
                                                  std::size_t surfaces, int threads = 1);
 
+/// collect_patch_members(points, labels, surfaces) where `old` already holds the members of the
+/// first `from` points (a map's last call: its surfaces only gain points, at the cloud's end):
+/// old's lists are copied whole and the points from `from` on appended. `old` describes at most
+/// `surfaces` surfaces and from <= labels.size(); the caller checks that it is the same cloud.
+[[nodiscard]] PatchMembers extend_patch_members(PatchMembers old, std::span<const Vec3f> points,
+                                                std::span<const std::int32_t> labels,
+                                                std::size_t from, std::size_t surfaces,
+                                                int threads = 1);
+
 }  // namespace surfgrow
