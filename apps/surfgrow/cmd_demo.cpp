@@ -65,7 +65,8 @@ EmulatedDemo emulated_demo(const std::filesystem::path& out, const ScanSettings&
     }
     EmulatedDemo d{scanner::Scene(scanner::builtin_scene(scan.scene)), map.cloud(), {}};
     d.run.result = map.result();
-    write_outputs(d.cloud, map.pipeline_config(), d.run, out, outputs, units, "scan/");
+    write_outputs(d.cloud, map.pipeline_config(), d.run.result, d.run, out, outputs, units,
+                  "scan/");
     return d;
 }
 

@@ -154,9 +154,8 @@ void add_map_command(CLI::App& app) {
             const Stopwatch watch;
             (void)map.add_scan(points, raw.pose.translation());
             GrowRun run;
-            run.result = map.result();
-            write_outputs(map.cloud(), map.pipeline_config(), run, args->out, args->outputs, units,
-                          fs::path(file).filename().string(), &carver);
+            write_outputs(map.cloud(), map.pipeline_config(), map.result(), run, args->out,
+                          args->outputs, units, fs::path(file).filename().string(), &carver);
             if (args->quiet) return;
             const MapUpdate& u = map.last_update();
             char buf[400];

@@ -133,15 +133,14 @@ GrowRun grow_and_write(const PointCloud& cloud, const PipelineConfig& config,
     GrowRun run;
     run.read_seconds = read_seconds;
     run.result = pipeline.run(cloud);
-    write_outputs(cloud, pipeline.config(), run, out_dir, outputs, units, input_name);
+    write_outputs(cloud, pipeline.config(), run.result, run, out_dir, outputs, units, input_name);
     return run;
 }
 
-void write_outputs(const PointCloud& cloud, const PipelineConfig& config, GrowRun& run,
-                   const std::filesystem::path& out_dir, const OutputChoice& outputs,
+void write_outputs(const PointCloud& cloud, const PipelineConfig& config, const PipelineResult& r,
+                   GrowRun& run, const std::filesystem::path& out_dir, const OutputChoice& outputs,
                    const CloudUnits& units, const std::string& input_name,
                    io::OctomapCarver* carver) {
-    const PipelineResult& r = run.result;
     const GrowerConfig& grow = config.grow;
     const double read_seconds = run.read_seconds;
 

@@ -48,15 +48,15 @@ GrowRun grow_and_write(const PointCloud& cloud, const PipelineConfig& config,
                        const std::filesystem::path& out_dir, const OutputChoice& outputs,
                        const CloudUnits& units, const std::string& input_name, double read_seconds);
 
-/// Writes the outputs of `run` (its result computed over `cloud` with `config`, as
-/// Pipeline::config() gives it) into `out_dir` as one transaction; sets run.write_seconds and
-/// run.robot.
+/// Writes the outputs of `result` (computed over `cloud` with `config`, as Pipeline::config()
+/// gives it) into `out_dir` as one transaction; sets run.write_seconds and run.robot (its own
+/// result is not read: a map's is its own, not copied).
 /// With a `carver` (map: the same one after every scan), environment.bt casts only the rays of
 /// the points added since.
-void write_outputs(const PointCloud& cloud, const PipelineConfig& config, GrowRun& run,
-                   const std::filesystem::path& out_dir, const OutputChoice& outputs,
-                   const CloudUnits& units, const std::string& input_name,
-                   io::OctomapCarver* carver = nullptr);
+void write_outputs(const PointCloud& cloud, const PipelineConfig& config,
+                   const PipelineResult& result, GrowRun& run, const std::filesystem::path& out_dir,
+                   const OutputChoice& outputs, const CloudUnits& units,
+                   const std::string& input_name, io::OctomapCarver* carver = nullptr);
 
 /// The one-line summary: "276480 points -> 5231 surfaces, 99.4% registered, 52.9x reduction, 0.041
 /// s".

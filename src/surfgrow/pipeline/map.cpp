@@ -154,9 +154,8 @@ const PipelineResult& Map::add_scan(const CloudView& scan, const Vec3d& origin) 
     st.seconds = {};
     st.seconds.grow = last_.join_seconds + last_.grow_seconds;
     const Stopwatch outputs_watch;
-    GrowResult copy = g;
     const GrowStats keep = st;
-    result_ = pipeline_.finish(cloud_, std::move(copy), &memo_);
+    result_ = pipeline_.finish(cloud_, std::move(g), &memo_);  // g is result_.grow: taken, returned
     result_.grow.stats = keep;
     last_.outputs_seconds = outputs_watch.seconds();
     return result_;

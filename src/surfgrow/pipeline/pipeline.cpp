@@ -32,7 +32,13 @@ PipelineResult Pipeline::run(const CloudView& cloud) const {
     return outputs(cloud, std::move(grown), std::move(index), nullptr);
 }
 
-PipelineResult Pipeline::finish(const CloudView& cloud, GrowResult grown,
+PipelineResult Pipeline::finish(const CloudView& cloud, const GrowResult& grown,
+                                PipelineMemo* memo) const {
+    GrowResult copy = grown;
+    return finish(cloud, std::move(copy), memo);
+}
+
+PipelineResult Pipeline::finish(const CloudView& cloud, GrowResult&& grown,
                                 PipelineMemo* memo) const {
     if (grown.labels.size() != cloud.size())
         throw Error(ErrorCode::kInvalidParameter,
@@ -41,14 +47,13 @@ PipelineResult Pipeline::finish(const CloudView& cloud, GrowResult grown,
     return outputs(cloud, std::move(grown), std::nullopt, memo);  // the occupancy grid indexes it
 }
 
-PipelineResult Pipeline::outputs(const CloudView& cloud, GrowResult grown,
+PipelineResult Pipeline::outputs(const CloudView& cloud, GrowResult&& grown,
                                  std::optional<GrowIndex> index, PipelineMemo* memo) const {
     const PipelineConfig& c = config_;
     const auto report = [&](std::string_view stage) {
         if (c.grow.progress) c.grow.progress(stage, 1.0);
     };
-    PipelineResult r;
-    r.grow = std::move(grown);
+    PipelineResult r;  // takes `grown` over at the end: a stage that throws leaves it as it was
 
     // The occupancy grid (on the grower's cubes: indexed here when the caller has no index) and
     // the collision spheres need none of the planes. With more than one thread they are built
@@ -59,12 +64,12 @@ PipelineResult Pipeline::outputs(const CloudView& cloud, GrowResult grown,
     const auto occupancy_and_collision = [&] {
         if (c.occupancy) {
             const Stopwatch watch;
-            if (memo) r.occupancy = extend_occupancy(memo->occupancy, cloud, r.grow.labels, c.grow);
+            if (memo) r.occupancy = extend_occupancy(memo->occupancy, cloud, grown.labels, c.grow);
             if (!r.occupancy) {
                 if (!index) index = SurfaceGrower(c.grow).index(cloud);
-                r.occupancy = OccupancyGrid(index->index, r.grow.labels, c.grow.mu);
+                r.occupancy = OccupancyGrid(index->index, grown.labels, c.grow.mu);
                 if (memo)
-                    remember_occupancy(memo->occupancy, cloud, r.grow.labels, index->index.bounds(),
+                    remember_occupancy(memo->occupancy, cloud, grown.labels, index->index.bounds(),
                                        *r.occupancy, c.grow);
             }
             index.reset();
@@ -72,7 +77,7 @@ PipelineResult Pipeline::outputs(const CloudView& cloud, GrowResult grown,
         }
         if (c.collision) {
             const Stopwatch watch;
-            r.collision = CollisionSpheres::from_surfaces(r.grow.surfaces);
+            r.collision = CollisionSpheres::from_surfaces(grown.surfaces);
             r.seconds.collision = watch.seconds();
         }
     };
@@ -83,13 +88,13 @@ PipelineResult Pipeline::outputs(const CloudView& cloud, GrowResult grown,
         meanwhile = std::async(std::launch::async, occupancy_and_collision);
     if (c.planes) {
         const Stopwatch watch;
-        r.planes = compute_bound_planes(cloud, r.grow.surfaces, r.grow.labels, *c.planes,
+        r.planes = compute_bound_planes(cloud, grown.surfaces, grown.labels, *c.planes,
                                         memo ? &memo->planes : nullptr);
         r.seconds.planes = watch.seconds();
         report("planes");
         if (c.coverage) {
             const Stopwatch cover;
-            r.coverage = plan_coverage(*r.planes, r.grow.surfaces, *c.coverage,
+            r.coverage = plan_coverage(*r.planes, grown.surfaces, *c.coverage,
                                        memo ? &memo->coverage : nullptr);
             r.seconds.coverage = cover.seconds();
             report("coverage");
@@ -100,6 +105,7 @@ PipelineResult Pipeline::outputs(const CloudView& cloud, GrowResult grown,
     } else {
         occupancy_and_collision();
     }
+    r.grow = std::move(grown);
     if (c.occupancy) report("occupancy");
     if (c.collision) report("collision");
     report("done");

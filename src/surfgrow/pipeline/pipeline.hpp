@@ -75,12 +75,16 @@ class Pipeline {
     /// surfaces and one label per point of `cloud`. Throws Error(kInvalidParameter) when the
     /// labels do not match the cloud. A `memo` carries work from one call to the next where the
     /// surfaces only gained points (PipelineMemo): the same result, in less time.
-    [[nodiscard]] PipelineResult finish(const CloudView& cloud, GrowResult grown,
+    [[nodiscard]] PipelineResult finish(const CloudView& cloud, const GrowResult& grown,
+                                        PipelineMemo* memo = nullptr) const;
+    /// The same, taking `grown` over once every stage has run (a map's millions of labels are
+    /// not copied); if a stage throws, `grown` is left as it was.
+    [[nodiscard]] PipelineResult finish(const CloudView& cloud, GrowResult&& grown,
                                         PipelineMemo* memo = nullptr) const;
 
   private:
-    PipelineResult outputs(const CloudView& cloud, GrowResult grown, std::optional<GrowIndex> index,
-                           PipelineMemo* memo) const;
+    PipelineResult outputs(const CloudView& cloud, GrowResult&& grown,
+                           std::optional<GrowIndex> index, PipelineMemo* memo) const;
 
     PipelineConfig config_;
 };
