@@ -219,7 +219,8 @@ TEST(Pipeline, FinishGivesWhatRunGivesForAnyThreadCount) {
 }
 
 // A stage that throws while the grid is built beside it: the error reaches the caller, after
-// the other thread is done with the result it was filling (ASan sees any use after that).
+// the other thread is done with the result it was filling (ASan sees any use after that), and
+// the grown result handed over is left as it was.
 TEST(Pipeline, FinishReportsABadGrowResultWhileTheGridIsBuilt) {
     const PointCloud cloud = scene_cloud();
     PipelineConfig config;
@@ -229,6 +230,10 @@ TEST(Pipeline, FinishReportsABadGrowResultWhileTheGridIsBuilt) {
     GrowResult stray = grown;
     stray.labels[stray.labels.size() / 2] = static_cast<std::int32_t>(stray.surfaces.size());
     EXPECT_THROW((void)pipeline.finish(cloud, std::move(stray)), Error);
+    // Handed over as an rvalue, the result is taken only once every stage has run: a map keeps
+    // its grown surfaces and labels.
+    EXPECT_EQ(stray.labels.size(), cloud.size());
+    EXPECT_EQ(stray.surfaces.size(), grown.surfaces.size());
     grown.labels.pop_back();
     EXPECT_THROW((void)pipeline.finish(cloud, std::move(grown)), Error);
 }
