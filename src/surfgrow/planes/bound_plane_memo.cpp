@@ -110,37 +110,45 @@ void remember_patches(BoundPlaneMemo& memo, const PatchMembers& members,
     memo.pairs = std::move(pairs);
 }
 
-const BoundPlane* remembered_plane(const BoundPlaneMemo& memo,
-                                   std::span<const std::uint32_t> patches,
-                                   std::span<const std::uint8_t> changed,
-                                   const CentredMoments& moments, const Vec3d& judge,
-                                   const BoundPlaneConfig& config) {
+const FittedRegion* remembered_region(const BoundPlaneMemo& memo,
+                                      std::span<const std::uint32_t> patches,
+                                      const BoundPlaneConfig& config) {
     if (patches.empty() || patches[0] >= memo.region_from.size() ||
         config.resolution != memo.resolution || config.closing_radius != memo.closing_radius ||
         config.simplify_tolerance != memo.simplify_tolerance)
         return nullptr;
     const std::int32_t r = memo.region_from[patches[0]];
-    if (r < 0) return nullptr;
-    const FittedRegion& f = memo.regions[static_cast<std::size_t>(r)];
-    if (!std::equal(patches.begin(), patches.end(), f.plane.patches.begin(),
-                    f.plane.patches.end()) ||
-        !same_bits(moments, f.moments) || judge != f.judge)
+    return r < 0 ? nullptr : &memo.regions[static_cast<std::size_t>(r)];
+}
+
+const FittedRegion* remembered_plane(const BoundPlaneMemo& memo,
+                                     std::span<const std::uint32_t> patches,
+                                     std::span<const std::uint8_t> changed,
+                                     const CentredMoments& moments, const Vec3d& judge,
+                                     const BoundPlaneConfig& config) {
+    const FittedRegion* f = remembered_region(memo, patches, config);
+    if (!f ||
+        !std::equal(patches.begin(), patches.end(), f->plane.patches.begin(),
+                    f->plane.patches.end()) ||
+        !same_bits(moments, f->moments) || judge != f->judge)
         return nullptr;
     for (const std::uint32_t s : patches)
         if (changed[s]) return nullptr;
-    return &f.plane;
+    return f;
 }
 
 void remember_planes(BoundPlaneMemo& memo, std::size_t patches,
                      std::span<const CentredMoments> moments, std::span<const Vec3d> judges,
-                     std::span<const BoundPlane> planes, const BoundPlaneConfig& config) {
+                     std::span<const BoundPlane> planes, std::vector<RegionState> states,
+                     const BoundPlaneConfig& config) {
     memo.resolution = config.resolution;
     memo.closing_radius = config.closing_radius;
     memo.simplify_tolerance = config.simplify_tolerance;
     memo.regions.resize(planes.size());
     memo.region_from.assign(patches, -1);
     for (std::size_t r = 0; r < planes.size(); ++r) {
-        memo.regions[r] = {moments[r], judges[r], planes[r]};
+        memo.regions[r] = {moments[r], judges[r], planes[r],
+                           r < states.size() ? std::move(states[r]) : RegionState{}};
         memo.region_from[planes[r].patches[0]] = static_cast<std::int32_t>(r);
     }
 }

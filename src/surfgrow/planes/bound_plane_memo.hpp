@@ -1,8 +1,9 @@
 // What bound planes keep from one call to the next on a map (pipeline/map.hpp), whose patches
 // only gain points, at the end of the cloud: the member lists are extended by the new points,
 // each patch's moments and box and which patches touch are recomputed only where a patch gained
-// members, and a region made of the same unchanged patches keeps its plane. The result has the
-// same bits as computing everything anew.
+// members, a region made of the same unchanged patches keeps its plane, and a region that changed
+// traces its boundary on the cell counts it kept (detail::extend_region). The regions and their
+// planes are those computed anew; a changed region's boundary lies within a raster cell of it.
 #pragma once
 
 #include <cstdint>
@@ -14,14 +15,39 @@
 #include "surfgrow/core/surface.hpp"
 #include "surfgrow/planes/bound_planes.hpp"
 #include "surfgrow/planes/patch_members.hpp"
+#include "surfgrow/planes/plane_raster.hpp"
 
 namespace surfgrow {
+
+/// How many of a region's member points lie in each cell of its boundary raster's lattice: the
+/// cell (x, y) has its centre at base + cell * (x, y), and the counts cover x in [x0, x0 + width),
+/// y in [y0, y0 + height), row-major. The lattice is the one its fit anew rasterised on (base its
+/// origin), so a point always falls in the same cell; points leave as well as join.
+struct CellCounts {
+    Vec2d base = Vec2d::Zero();
+    double cell = 1.0;
+    long x0 = 0, y0 = 0;
+    long width = 0, height = 0;
+    std::vector<std::uint32_t> count;
+};
+
+/// What extending a region's plane by new points needs (detail::extend_region): the frame of
+/// its last fit anew and the cell counts of its member points in it. Empty (no counts) for a
+/// degenerate plane, which is always fitted anew.
+struct RegionState {
+    Vec3d normal = Vec3d::UnitZ();  ///< the plane's normal, u and v axes, and centroid
+    Vec3d u_axis = Vec3d::UnitX();
+    Vec3d v_axis = Vec3d::UnitY();
+    Vec3d anchor = Vec3d::Zero();
+    CellCounts cells;  ///< of the member points in that frame, before the closing
+};
 
 /// A region's plane as fitted, with what its fit read besides its patches' members.
 struct FittedRegion {
     CentredMoments moments;  ///< pooled over its patches, in the order it grew
     Vec3d judge = Vec3d::Zero();
     BoundPlane plane;  ///< its `patches` are the region's, ascending
+    RegionState state;
 };
 
 /// Each patch as the last call saw it, and the planes it fitted. Empty until a call fills it.
@@ -80,18 +106,26 @@ void remember_patches(BoundPlaneMemo& memo, const PatchMembers& members,
                       std::span<const Surface> surfaces, std::vector<Moments> moments,
                       std::vector<Aabb> boxes, double reach, std::vector<std::uint64_t> pairs);
 
+/// The memo's region whose first patch is `patches[0]` (ascending), traced with the same lengths;
+/// null otherwise.
+[[nodiscard]] const FittedRegion* remembered_region(const BoundPlaneMemo& memo,
+                                                    std::span<const std::uint32_t> patches,
+                                                    const BoundPlaneConfig& config);
+
 /// The memo's plane of a region (`patches` ascending, none of them changed: `changed` marks those
 /// that did), when it fitted the same one: the same patches, pooled moments and judge, traced with
 /// the same lengths. Null otherwise.
-[[nodiscard]] const BoundPlane* remembered_plane(const BoundPlaneMemo& memo,
-                                                 std::span<const std::uint32_t> patches,
-                                                 std::span<const std::uint8_t> changed,
-                                                 const CentredMoments& moments, const Vec3d& judge,
-                                                 const BoundPlaneConfig& config);
+[[nodiscard]] const FittedRegion* remembered_plane(const BoundPlaneMemo& memo,
+                                                   std::span<const std::uint32_t> patches,
+                                                   std::span<const std::uint8_t> changed,
+                                                   const CentredMoments& moments,
+                                                   const Vec3d& judge,
+                                                   const BoundPlaneConfig& config);
 
-/// Records the regions' planes (every region, before they are published) in the memo.
+/// Records the regions' planes and states (every region, before they are published) in the memo.
 void remember_planes(BoundPlaneMemo& memo, std::size_t patches,
                      std::span<const CentredMoments> moments, std::span<const Vec3d> judges,
-                     std::span<const BoundPlane> planes, const BoundPlaneConfig& config);
+                     std::span<const BoundPlane> planes, std::vector<RegionState> states,
+                     const BoundPlaneConfig& config);
 
 }  // namespace surfgrow

@@ -18,6 +18,7 @@
 #include "surfgrow/planes/bound_plane_memo.hpp"
 #include "surfgrow/planes/boundary_polygon.hpp"
 #include "surfgrow/planes/detail/region_fit.hpp"
+#include "surfgrow/planes/detail/region_plane.hpp"
 #include "surfgrow/planes/patch_adjacency.hpp"
 #include "surfgrow/planes/patch_members.hpp"
 #include "surfgrow/planes/plane_raster.hpp"
@@ -29,52 +30,13 @@ namespace {
 using detail::add_judge;
 using detail::add_normal;
 using detail::Fit;
+using detail::median_of;
 using detail::region_fit;
 
 constexpr double kDeg = M_PI / 180.0;
-// A face's plane is refitted on the member points within this many robust sigmas (1.4826 x the
-// median distance) of the previous fit, at most this many times.
-constexpr double kInlierSigmas = 3.0;
-constexpr int kRefitPasses = 5;
 
 [[noreturn]] void bad(std::initializer_list<std::string_view> what) {
     throw Error(ErrorCode::kInvalidParameter, cat(what));
-}
-
-double median_of(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    const auto mid = v.begin() + static_cast<long>(v.size() / 2);
-    std::nth_element(v.begin(), mid, v.end());
-    return *mid;
-}
-
-// The plane of the points within k robust sigma of (normal, centroid), as moments: points of
-// a neighbouring face that some patch near the edge registered within its tolerance tilt a
-// least-squares fit of all members; the inliers' fit does without them. Sigma is 1.4826 x the
-// median distance, taken over at most kSigmaSample points evenly spread through the list (a few
-// per cent of noise in a threshold at 3 sigma, for a fraction of the cost on big faces).
-constexpr std::size_t kSigmaSample = 8192;
-
-CentredMoments inlier_moments(std::span<const Vec3d> points, const Vec3d& normal,
-                              const Vec3d& centroid, double k, double floor_scale,
-                              std::vector<double>& scratch) {
-    scratch.clear();
-    const std::size_t stride = points.size() / kSigmaSample + 1;
-    for (std::size_t i = 0; i < points.size(); i += stride)
-        scratch.push_back(std::abs(normal.dot(points[i] - centroid)));
-    const auto mid = scratch.begin() + static_cast<std::ptrdiff_t>(scratch.size() / 2);
-    std::nth_element(scratch.begin(), mid, scratch.end());
-    const double sigma = scratch.empty() ? 0.0 : 1.4826 * *mid;
-    // Points exactly on a plane still scatter by the float coordinates' rounding: keep them.
-    const double limit = std::max(k * sigma, 1e-6 * floor_scale);
-    Moments about_centroid;
-    for (const Vec3d& p : points) {
-        const Vec3d d = p - centroid;
-        if (std::abs(normal.dot(d)) > limit) continue;
-        about_centroid.add(d);
-    }
-    if (about_centroid.n < 3) return {};
-    return CentredMoments::of(about_centroid, centroid);
 }
 
 // Regions of coplanar patches, by index.
@@ -297,18 +259,6 @@ void bridge_gaps(std::span<const Surface> surfaces, const std::vector<std::uint8
     }
 }
 
-// The in-plane axis of largest spread, with a deterministic sign.
-Vec3d principal_axis(const Vec3d& n, const Mat3d& scatter) {
-    const Vec3d e1 = n.unitOrthogonal();
-    const Vec3d e2 = n.cross(e1);
-    const double a = e1.dot(scatter * e1), b = e2.dot(scatter * e2), c = e1.dot(scatter * e2);
-    const double phi = 0.5 * std::atan2(2 * c, a - b);
-    Vec3d u = (std::cos(phi) * e1 + std::sin(phi) * e2).normalized();
-    Eigen::Index k = 0;
-    u.cwiseAbs().maxCoeff(&k);
-    return u[k] < 0 ? Vec3d(-u) : u;
-}
-
 // ---- The stages of compute_bound_planes, in the order it runs them.
 
 // Throws Error(kInvalidParameter) for labels or surfaces that are not a grow result of `cloud`.
@@ -483,81 +433,6 @@ Regions grow_regions(std::span<const Surface> surfaces, const PatchMembers& memb
     return regions;
 }
 
-// A region's bound plane: the least-squares plane of its members' points, refitted to its inliers,
-// oriented by its patches' normals, with its frame, bounds and boundary polygons.
-BoundPlane fit_region(std::span<const Surface> surfaces, const PatchMembers& members,
-                      const std::vector<CentredMoments>& moments,
-                      const std::vector<std::uint32_t>& list, const CentredMoments& all,
-                      const Vec3d& judge, const BoundPlaneConfig& cfg) {
-    BoundPlane plane;
-    Fit fit = region_fit(all, judge);
-    CentredMoments m = all;
-    std::vector<Vec3d> points;  // the members, contiguous: every pass below streams them
-    points.reserve(static_cast<std::size_t>(all.n));
-    for (const std::uint32_t s : list)
-        for (const Vec3f& x : members.points_of(s)) points.push_back(x.cast<double>());
-    if (!fit.degenerate) {
-        // Until the inliers stop changing (two or three passes on the test scenes).
-        const double spread = std::sqrt(all.scatter.trace() / all.n);
-        std::vector<double> scratch;
-        for (int pass = 0; pass < kRefitPasses; ++pass) {
-            const CentredMoments inliers =
-                inlier_moments(points, fit.normal, m.mean, kInlierSigmas, spread, scratch);
-            const Fit f = region_fit(inliers, judge);
-            if (inliers.n < 3 || f.degenerate) break;
-            const bool same = inliers.n == m.n;
-            m = inliers;
-            fit = f;
-            if (same) break;
-        }
-    }
-    plane.patches = list;
-    plane.point_count = static_cast<std::uint64_t>(all.n);
-    plane.centroid = m.mean;
-    plane.degenerate = fit.degenerate;
-    Vec3d n = fit.normal;
-    if (fit.degenerate) {  // the patches' own normals, sign-aligned and point-weighted
-        Vec3d sum = Vec3d::Zero();
-        for (const std::uint32_t s : list) add_normal(sum, surfaces[s].normal, moments[s].n);
-        n = sum.norm() > 0 ? Vec3d(sum.normalized()) : surfaces[list[0]].normal;
-    }
-    // Orientation: the majority of the member patches' (sensor-facing) normals; a tie goes
-    // to the point-weighted vote, then to the first patch.
-    long votes = 0;
-    double weight = 0;
-    for (const std::uint32_t s : list) {
-        const double d = surfaces[s].normal.dot(n);
-        votes += d >= 0 ? 1 : -1;
-        weight += (d >= 0 ? 1 : -1) * moments[s].n;
-    }
-    const bool flip =
-        votes != 0 ? votes < 0 : (weight != 0 ? weight < 0 : surfaces[list[0]].normal.dot(n) < 0);
-    plane.normal = flip ? Vec3d(-n) : n;
-    plane.rms = std::sqrt(std::max(0.0, all.mean_square_distance(plane.normal, m.mean)));
-    plane.u_axis = principal_axis(plane.normal, all.scatter);
-    plane.v_axis = plane.normal.cross(plane.u_axis);
-    std::vector<Vec2d> flat;
-    flat.reserve(plane.point_count);
-    std::vector<double> spacing;
-    for (const Vec3d& p : points) {
-        plane.bounds.add(p);
-        flat.push_back(plane.to_plane(p));
-    }
-    for (const std::uint32_t s : list) {
-        const Surface& f = surfaces[s];
-        if (f.neighbours > 0)
-            spacing.push_back(std::sqrt(M_PI * f.radius * f.radius / double(f.neighbours)));
-    }
-    plane.closing_radius = cfg.closing_radius > 0
-                               ? cfg.closing_radius
-                               : std::max(cfg.resolution, 1.5 * median_of(std::move(spacing)));
-    const PlaneRaster raster = rasterise_points(flat, cfg.resolution, plane.closing_radius);
-    plane.polygons =
-        trace_boundaries(raster, cfg.simplify_tolerance, 2 * raster.cell * raster.cell);
-    for (const PolygonWithHoles& poly : plane.polygons) plane.area += polygon_area(poly);
-    return plane;
-}
-
 // The planes in publishing order, largest first (ties by smallest member id: every plane has
 // members, all distinct), with each patch's plane and the totals.
 void publish_planes(std::vector<BoundPlane>& planes, BoundPlanes& out) {
@@ -667,11 +542,15 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
         same_reach ? std::span<const std::uint64_t>(recall.pairs)
                    : std::span<const std::uint64_t>{},
         cfg.adjacency, threads);
-    if (memo)
+    const auto remember_the_patches = [&] {
         remember_patches(*memo, members, surfaces, std::move(about_home), std::move(boxes),
-                         cfg.adjacency, keys);
+                         cfg.adjacency, std::move(keys));
+    };
     if (ns == 0 || members.index.empty()) {
-        if (memo) remember_planes(*memo, ns, {}, {}, {}, cfg);
+        if (memo) {
+            remember_the_patches();
+            remember_planes(*memo, ns, {}, {}, {}, {}, cfg);
+        }
         return out;
     }
     out.stats.adjacent_pairs = keys.size();
@@ -682,23 +561,36 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
     drop_emptied(regions);
     for (std::vector<std::uint32_t>& list : regions.members) std::sort(list.begin(), list.end());
 
-    // Each region's plane, frame and boundary (the memo's, where it fitted the same region);
-    // independent, so in parallel.
+    // Each region's plane, frame and boundary: the memo's where it fitted the same region,
+    // extended where the region only gained points since (a map), else fitted; independent, so
+    // in parallel.
     const std::size_t nr = regions.members.size();
     std::vector<BoundPlane> planes(nr);
+    std::vector<RegionState> states(memo ? nr : 0);
     detail::ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (std::size_t r = 0; r < nr; ++r)
         errors.run(r, [&] {
-            const BoundPlane* same = remembered_plane(recall, regions.members[r], changed,
-                                                      regions.moments[r], regions.judges[r], cfg);
-            planes[r] = same ? *same
-                             : fit_region(surfaces, members, moments, regions.members[r],
-                                          regions.moments[r], regions.judges[r], cfg);
+            const std::vector<std::uint32_t>& list = regions.members[r];
+            if (const FittedRegion* same = remembered_plane(
+                    recall, list, changed, regions.moments[r], regions.judges[r], cfg)) {
+                planes[r] = same->plane;
+                if (memo) states[r] = same->state;
+                return;
+            }
+            const detail::RegionInput in{surfaces,           members,          moments, boxes, list,
+                                         regions.moments[r], regions.judges[r]};
+            const FittedRegion* was =
+                memo && known.valid ? remembered_region(recall, list, cfg) : nullptr;
+            std::optional<BoundPlane> grown;
+            if (was) grown = detail::extend_region(in, *was, known.count, cfg, states[r]);
+            planes[r] = grown ? std::move(*grown)
+                              : detail::fit_region(in, cfg, memo ? &states[r] : nullptr);
         });
     errors.rethrow();
     if (memo) {
-        remember_planes(*memo, ns, regions.moments, regions.judges, planes, cfg);
+        remember_the_patches();
+        remember_planes(*memo, ns, regions.moments, regions.judges, planes, std::move(states), cfg);
         memo->members = std::move(members);
         memo->member_points = labels.size();
     }

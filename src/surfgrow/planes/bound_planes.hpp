@@ -111,7 +111,9 @@ struct BoundPlanes {
 ///
 /// With a `memo` (bound_plane_memo.hpp), what it holds from the last call is reused where the
 /// patches only gained members since (a map: pipeline/map.hpp), and it is refreshed: the same
-/// result, bit for bit, in less time. A memo that does not fit the patches is ignored.
+/// regions, and the same plane of each (normal, centroid, RMS, box), in less time; a region that
+/// changed has its boundary traced on the cell counts the memo kept, within a raster cell of the
+/// one traced anew (detail::extend_region). A memo that does not fit the patches is ignored.
 [[nodiscard]] BoundPlanes compute_bound_planes(const CloudView& cloud,
                                                std::span<const Surface> surfaces,
                                                std::span<const std::int32_t> labels,

@@ -81,13 +81,26 @@ void squared_distance_transform(std::span<const std::uint8_t> feature, int width
     }
 }
 
-PlaneRaster rasterise_points(std::span<const Vec2d> points, double cell, double closing_radius) {
+namespace {
+
+void check_lengths(double cell, double closing_radius) {
     if (!(cell > 0) || !std::isfinite(cell))
         throw Error(ErrorCode::kInvalidParameter,
                     cat({"raster cell must be positive, got ", num(cell)}));
     if (!(closing_radius >= 0) || !std::isfinite(closing_radius))
         throw Error(ErrorCode::kInvalidParameter,
                     cat({"closing radius must be >= 0, got ", num(closing_radius)}));
+}
+
+// The empty cells a closing by `closing_radius` needs beyond the marked ones.
+int closing_margin(double closing_radius, double cell) {
+    return static_cast<int>(std::ceil(closing_radius / cell)) + 2;
+}
+
+}  // namespace
+
+PlaneRaster mark_points(std::span<const Vec2d> points, double cell, double closing_radius) {
+    check_lengths(cell, closing_radius);
     if (points.empty()) throw Error(ErrorCode::kInvalidParameter, "raster: no points");
     Vec2d lo = points[0], hi = points[0];
     for (const Vec2d& p : points) {
@@ -96,7 +109,7 @@ PlaneRaster rasterise_points(std::span<const Vec2d> points, double cell, double 
     }
     PlaneRaster r;
     r.cell = fitting_cell(lo, hi, cell, closing_radius);
-    const int margin = static_cast<int>(std::ceil(closing_radius / r.cell)) + 2;
+    const int margin = closing_margin(closing_radius, r.cell);
     r.origin = lo - margin * r.cell * Vec2d::Ones();
     r.width = static_cast<int>(std::floor((hi.x() - lo.x()) / r.cell)) + 2 * margin + 2;
     r.height = static_cast<int>(std::floor((hi.y() - lo.y()) / r.cell)) + 2 * margin + 2;
@@ -107,7 +120,12 @@ PlaneRaster rasterise_points(std::span<const Vec2d> points, double cell, double 
         const auto y = static_cast<std::size_t>(std::lround((p.y() - r.origin.y()) / r.cell));
         r.cells[y * w + x] = 1;
     }
-    if (closing_radius <= 0) return r;
+    return r;
+}
+
+void close_gaps(PlaneRaster& r, double closing_radius) {
+    check_lengths(r.cell, closing_radius);
+    if (closing_radius <= 0) return;
     // Closing = dilation then erosion by the same disc; both are thresholds of a distance map.
     const double r2 = (closing_radius / r.cell) * (closing_radius / r.cell);
     std::vector<double> dist;
@@ -116,6 +134,11 @@ PlaneRaster rasterise_points(std::span<const Vec2d> points, double cell, double 
     for (std::size_t i = 0; i < dist.size(); ++i) outside[i] = dist[i] > r2 ? 1 : 0;
     squared_distance_transform(outside, r.width, r.height, dist);
     for (std::size_t i = 0; i < dist.size(); ++i) r.cells[i] = dist[i] > r2 ? 1 : 0;
+}
+
+PlaneRaster rasterise_points(std::span<const Vec2d> points, double cell, double closing_radius) {
+    PlaneRaster r = mark_points(points, cell, closing_radius);
+    close_gaps(r, closing_radius);
     return r;
 }
 

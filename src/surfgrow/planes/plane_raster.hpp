@@ -38,6 +38,15 @@ inline constexpr std::size_t kMaxRasterCells = std::size_t{1} << 24;
 [[nodiscard]] PlaneRaster rasterise_points(std::span<const Vec2d> points, double cell,
                                            double closing_radius);
 
+/// rasterise_points' first half: the cells of the points marked, with the empty border the
+/// closing needs (close_gaps does it).
+[[nodiscard]] PlaneRaster mark_points(std::span<const Vec2d> points, double cell,
+                                      double closing_radius);
+
+/// rasterise_points' second half: the morphological closing of the marked cells by a disc of
+/// `closing_radius` (none at 0), in place. The raster needs the border mark_points leaves.
+void close_gaps(PlaneRaster& raster, double closing_radius);
+
 /// Squared Euclidean distance, in cells, from every cell to the nearest cell where
 /// feature[i] != 0 (Felzenszwalb and Huttenlocher's linear-time transform). Cells with no
 /// feature anywhere get a large finite value.
