@@ -74,7 +74,9 @@ class Pipeline {
     /// Runs the stages after growing over a result grown elsewhere (a Map's): `grown` holds
     /// surfaces and one label per point of `cloud`. Throws Error(kInvalidParameter) when the
     /// labels do not match the cloud. A `memo` carries work from one call to the next where the
-    /// surfaces only gained points (PipelineMemo): the same result, in less time.
+    /// surfaces only gained points (PipelineMemo), in less time: the same result, except that a
+    /// bound plane whose region changed has its boundary traced on the cell counts the memo kept
+    /// (within a raster cell of the one traced anew; compute_bound_planes) and coverage follows.
     [[nodiscard]] PipelineResult finish(const CloudView& cloud, const GrowResult& grown,
                                         PipelineMemo* memo = nullptr) const;
     /// The same, taking `grown` over once every stage has run (a map's millions of labels are

@@ -16,12 +16,10 @@
 #include "surfgrow/core/text.hpp"
 #include "surfgrow/core/threads.hpp"
 #include "surfgrow/planes/bound_plane_memo.hpp"
-#include "surfgrow/planes/boundary_polygon.hpp"
 #include "surfgrow/planes/detail/region_fit.hpp"
 #include "surfgrow/planes/detail/region_plane.hpp"
 #include "surfgrow/planes/patch_adjacency.hpp"
 #include "surfgrow/planes/patch_members.hpp"
-#include "surfgrow/planes/plane_raster.hpp"
 
 namespace surfgrow {
 

@@ -24,8 +24,8 @@ constexpr std::size_t kSigmaSample = 8192;
 // cost an eighth.
 constexpr std::size_t kFitSample = std::size_t{1} << 16;
 
-// Calls f(point) for every member point of the region, patch by patch (the fit's order): the
-// passes stream the member lists in place.
+// Calls f(point) for every member point of the region, patch by patch, from the member lists
+// in place.
 template <class F>
 void for_each_point(const RegionInput& in, F&& f) {
     for (const std::uint32_t s : in.patches)
