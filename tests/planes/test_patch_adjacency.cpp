@@ -214,15 +214,34 @@ TEST(PatchMembers, ExtendedByLaterPointsAreTheListsCollectedAnew) {
     const std::span<const std::int32_t> first_labels(labels.data(), 3000);
     for (const int threads : {1, 2, 3}) {
         const PatchMembers truth = collect_patch_members(points, labels, 6, threads);
-        const PatchMembers got =
-            extend_patch_members(collect_patch_members(first_points, first_labels, 4, threads),
-                                 points, labels, 3000, 6, threads);
+        const PatchMembers got = extend_patch_members(
+            collect_patch_members(first_points, first_labels, 4, threads), points, labels, 3000, 6);
         EXPECT_EQ(got.offset, truth.offset) << threads << " threads";
         EXPECT_EQ(got.index, truth.index) << threads << " threads";
         EXPECT_TRUE(got.point == truth.point) << threads << " threads";
-        // Extended by nothing: the same lists.
-        const PatchMembers same = extend_patch_members(truth, points, labels, 5000, 6, threads);
-        EXPECT_EQ(same.index, truth.index);
+    }
+    const PatchMembers truth = collect_patch_members(points, labels, 6);
+    // Extended by nothing: the same lists.
+    EXPECT_EQ(extend_patch_members(truth, points, labels, 5000, 6).index, truth.index);
+    // Scan by scan: 3000, 3200, 3500, then 5000 points. The third step fits in the room the
+    // second left, its lists moved in place.
+    const auto first = [&](std::size_t n) {
+        return collect_patch_members(std::span(points).first(n), std::span(labels).first(n), 6);
+    };
+    PatchMembers m = collect_patch_members(first_points, first_labels, 4);
+    std::size_t seen = 3000;
+    for (const std::size_t n : {3200, 3500, 5000}) {
+        const std::size_t room = m.index.capacity();
+        m = extend_patch_members(std::move(m), std::span(points).first(n),
+                                 std::span(labels).first(n), seen, 6);
+        seen = n;
+        const PatchMembers anew = first(n);
+        EXPECT_EQ(m.offset, anew.offset) << n << " points";
+        EXPECT_EQ(m.index, anew.index) << n << " points";
+        EXPECT_TRUE(m.point == anew.point) << n << " points";
+        if (n == 3500) {
+            EXPECT_EQ(m.index.capacity(), room);
+        }
     }
 }
 

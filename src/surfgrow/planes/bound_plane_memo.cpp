@@ -34,7 +34,7 @@ PatchMembers patch_members(BoundPlaneMemo& memo, std::span<const Vec3f> points,
                points[last] == old.point[old.offset[s + 1] - 1];
     }
     if (!same) return collect_patch_members(points, labels, surfaces, threads);
-    return extend_patch_members(std::move(old), points, labels, from, surfaces, threads);
+    return extend_patch_members(std::move(old), points, labels, from, surfaces);
 }
 
 KnownMembers known_members(const BoundPlaneMemo& memo, const PatchMembers& members,

@@ -3,7 +3,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <cstring>
 #include <utility>
 
 namespace surfgrow {
@@ -51,7 +50,7 @@ PatchMembers collect_patch_members(std::span<const Vec3f> points,
 
 PatchMembers extend_patch_members(PatchMembers old, std::span<const Vec3f> points,
                                   std::span<const std::int32_t> labels, std::size_t from,
-                                  std::size_t surfaces, int threads) {
+                                  std::size_t surfaces) {
     const std::size_t n = labels.size();
     const std::size_t known = old.offset.empty() ? 0 : old.offset.size() - 1;
     // The new points' counts (few: one scan), then each list's new start.
@@ -59,27 +58,34 @@ PatchMembers extend_patch_members(PatchMembers old, std::span<const Vec3f> point
     auto member = [&](std::size_t i) { return labels[i] >= 0 && is_finite(points[i]); };
     for (std::size_t i = from; i < n; ++i)
         if (member(i)) ++at[static_cast<std::size_t>(labels[i])];
-    PatchMembers m;
-    m.offset.assign(surfaces + 1, 0);
+    std::vector<std::uint32_t> offset(surfaces + 1, 0);
     std::uint32_t next = 0;
     for (std::size_t s = 0; s < surfaces; ++s) {
-        m.offset[s] = next;
+        offset[s] = next;
         const std::uint32_t had = s < known ? old.offset[s + 1] - old.offset[s] : 0;
         next += had + std::exchange(at[s], next + had);  // at[s]: where its new points go
     }
-    m.offset[surfaces] = next;
-    m.index.resize(next);
-    m.point.resize(next);
-    // The old lists whole, each at its new start: sequential copies, not a scatter of millions.
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 4096)
-    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(known); ++k) {
-        const auto s = static_cast<std::size_t>(k);
-        const std::uint32_t a = old.offset[s], len = old.offset[s + 1] - a;
-        if (len == 0) continue;
-        std::memcpy(m.index.data() + m.offset[s], old.index.data() + a,
-                    len * sizeof(std::uint32_t));
-        std::copy_n(old.point.data() + a, len, m.point.data() + m.offset[s]);
+    offset[surfaces] = next;
+    // In place: the arrays grow (with room for a few more scans, so that most calls move no
+    // memory to a new block and touch no new page), then each old list moves to its new start,
+    // the last first. A list only moves towards the end, and never past the next one's new start,
+    // so none overwrites a list still to move.
+    if (old.index.capacity() < next) {
+        old.index.reserve(next + next / 4);
+        old.point.reserve(next + next / 4);
     }
+    old.index.resize(next);
+    old.point.resize(next);
+    for (std::size_t s = known; s-- > 0;) {
+        const std::uint32_t a = old.offset[s], len = old.offset[s + 1] - a;
+        if (len == 0 || offset[s] == a) continue;
+        std::copy_backward(old.index.begin() + a, old.index.begin() + a + len,
+                           old.index.begin() + offset[s] + len);
+        std::copy_backward(old.point.begin() + a, old.point.begin() + a + len,
+                           old.point.begin() + offset[s] + len);
+    }
+    PatchMembers m = std::move(old);
+    m.offset = std::move(offset);
     for (std::size_t i = from; i < n; ++i)
         if (member(i)) {
             const std::uint32_t j = at[static_cast<std::size_t>(labels[i])]++;

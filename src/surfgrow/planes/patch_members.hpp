@@ -34,11 +34,11 @@ struct PatchMembers {
 
 /// collect_patch_members(points, labels, surfaces) where `old` already holds the members of the
 /// first `from` points (a map's last call: its surfaces only gain points, at the cloud's end):
-/// old's lists are copied whole and the points from `from` on appended. `old` describes at most
-/// `surfaces` surfaces and from <= labels.size(); the caller checks that it is the same cloud.
+/// old's lists move, in place, to their new starts and the points from `from` on are appended.
+/// `old` describes at most `surfaces` surfaces and from <= labels.size(); the caller checks that
+/// it is the same cloud.
 [[nodiscard]] PatchMembers extend_patch_members(PatchMembers old, std::span<const Vec3f> points,
                                                 std::span<const std::int32_t> labels,
-                                                std::size_t from, std::size_t surfaces,
-                                                int threads = 1);
+                                                std::size_t from, std::size_t surfaces);
 
 }  // namespace surfgrow
