@@ -172,15 +172,7 @@ double boundary_cells_apart(const BoundPlanes& got, const BoundPlanes& truth,
         EXPECT_NEAR(p.u_axis.dot(p.normal), 0.0, 1e-12) << "plane " << k;
         EXPECT_NEAR(p.v_axis.dot(p.u_axis), 0.0, 1e-12) << "plane " << k;
         extended += p.u_axis != q.u_axis || p.area != q.area;
-        double perimeter = 0;
-        const auto add = [&](const Ring& ring) {
-            for (std::size_t i = 0; i < ring.size(); ++i)
-                perimeter += (ring[(i + 1) % ring.size()] - ring[i]).norm();
-        };
-        for (const PolygonWithHoles& poly : q.polygons) {
-            add(poly.outer);
-            for (const Ring& hole : poly.holes) add(hole);
-        }
+        const double perimeter = test::boundary_length(q.polygons);
         if (perimeter > 0)
             worst =
                 std::max(worst, std::abs(p.area - q.area) / (perimeter * truth.config.resolution));

@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "support/test_support.hpp"
 #include "surfgrow/planes/detail/region_plane.hpp"
 
 namespace surfgrow::detail {
@@ -92,19 +93,6 @@ BoundPlaneConfig config() {
     return c;
 }
 
-double perimeter(const BoundPlane& p) {
-    double sum = 0;
-    const auto add = [&](const Ring& ring) {
-        for (std::size_t i = 0; i < ring.size(); ++i)
-            sum += (ring[(i + 1) % ring.size()] - ring[i]).norm();
-    };
-    for (const PolygonWithHoles& poly : p.polygons) {
-        add(poly.outer);
-        for (const Ring& hole : poly.holes) add(hole);
-    }
-    return sum;
-}
-
 // The plane `was` fitted on the first part of strip `before`, with its state.
 FittedRegion fitted(const Strip& before, const std::vector<std::uint32_t>& patches) {
     const Region r(before, patches);
@@ -125,7 +113,8 @@ void expect_same_plane_within_a_cell(const BoundPlane& got, const BoundPlane& tr
     EXPECT_EQ(got.bounds.max, truth.bounds.max);
     EXPECT_NEAR(got.u_axis.dot(got.normal), 0.0, 1e-12);
     EXPECT_NEAR(got.v_axis.norm(), 1.0, 1e-12);
-    EXPECT_LE(std::abs(got.area - truth.area), perimeter(truth) * config().resolution);
+    EXPECT_LE(std::abs(got.area - truth.area),
+              test::boundary_length(truth.polygons) * config().resolution);
     EXPECT_EQ(got.polygons.size(), truth.polygons.size());
 }
 

@@ -9,11 +9,13 @@
 #include <filesystem>
 #include <optional>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "surfgrow/core/geometry.hpp"
 #include "surfgrow/core/point_cloud.hpp"
+#include "surfgrow/planes/polygon2d.hpp"
 
 namespace surfgrow::test {
 
@@ -107,5 +109,19 @@ std::vector<Rect> ibeam_faces(double length, double height, double flange_width,
 double median(std::vector<double> values);
 /// q-quantile (0..1) by nearest rank; NaN when empty.
 double quantile(std::vector<double> values, double q);
+
+/// The length of every ring of the polygons, outer rings and holes.
+[[nodiscard]] inline double boundary_length(std::span<const PolygonWithHoles> polygons) {
+    double sum = 0;
+    const auto add = [&](const Ring& ring) {
+        for (std::size_t i = 0; i < ring.size(); ++i)
+            sum += (ring[(i + 1) % ring.size()] - ring[i]).norm();
+    };
+    for (const PolygonWithHoles& poly : polygons) {
+        add(poly.outer);
+        for (const Ring& hole : poly.holes) add(hole);
+    }
+    return sum;
+}
 
 }  // namespace surfgrow::test

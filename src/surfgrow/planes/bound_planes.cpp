@@ -565,6 +565,7 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
     const std::size_t nr = regions.members.size();
     std::vector<BoundPlane> planes(nr);
     std::vector<RegionState> states(memo ? nr : 0);
+    std::vector<const FittedRegion*> kept(nr, nullptr);  // the memo's region, where the same
     detail::ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (std::size_t r = 0; r < nr; ++r)
@@ -573,20 +574,23 @@ BoundPlanes compute_bound_planes(const CloudView& cloud, std::span<const Surface
             if (const FittedRegion* same = remembered_plane(
                     recall, list, changed, regions.moments[r], regions.judges[r], cfg)) {
                 planes[r] = same->plane;
-                if (memo) states[r] = same->state;
+                kept[r] = same;  // its state moves over below
                 return;
             }
             const detail::RegionInput in{surfaces,           members,          moments, boxes, list,
                                          regions.moments[r], regions.judges[r]};
             const FittedRegion* was =
                 memo && known.valid ? remembered_region(recall, list, cfg) : nullptr;
-            std::optional<BoundPlane> grown;
-            if (was) grown = detail::extend_region(in, *was, known.count, cfg, states[r]);
-            planes[r] = grown ? std::move(*grown)
-                              : detail::fit_region(in, cfg, memo ? &states[r] : nullptr);
+            planes[r] =
+                detail::region_plane(in, was, known.count, cfg, memo ? &states[r] : nullptr);
         });
     errors.rethrow();
     if (memo) {
+        // The memo's regions are replaced next: an unchanged region's cell counts move over.
+        for (std::size_t r = 0; r < nr; ++r)
+            if (kept[r])
+                states[r] = std::move(
+                    memo->regions[static_cast<std::size_t>(kept[r] - memo->regions.data())].state);
         remember_the_patches();
         remember_planes(*memo, ns, regions.moments, regions.judges, planes, std::move(states), cfg);
         memo->members = std::move(members);

@@ -282,8 +282,12 @@ double median_of(std::vector<double> v) {
     return *mid;
 }
 
-BoundPlane fit_region(const RegionInput& in, const BoundPlaneConfig& cfg, RegionState* state) {
-    BoundPlane plane = plane_of(in, fit_plane(in), cfg);
+namespace {
+
+// fit_region with the plane fitted: frame, bounds and boundary on a raster of every point.
+BoundPlane rasterised(const RegionInput& in, const RegionFit& f, const BoundPlaneConfig& cfg,
+                      RegionState* state) {
+    BoundPlane plane = plane_of(in, f, cfg);
     plane.u_axis = principal_axis(plane.normal, in.all.scatter);
     plane.v_axis = plane.normal.cross(plane.u_axis);
     std::vector<Vec2d> flat;
@@ -301,12 +305,17 @@ BoundPlane fit_region(const RegionInput& in, const BoundPlaneConfig& cfg, Region
     return plane;
 }
 
-std::optional<BoundPlane> extend_region(const RegionInput& in, const FittedRegion& was,
-                                        std::span<const std::uint32_t> known,
-                                        const BoundPlaneConfig& cfg, RegionState& state) {
+// Whether extend_region may extend `was` before its plane is fitted.
+bool extendable(const RegionInput& in, const FittedRegion& was) {
+    return !was.state.cells.count.empty() && in.all.n <= 2 * was.moments.n;
+}
+
+// extend_region with the plane fitted.
+std::optional<BoundPlane> traced_on_counts(const RegionInput& in, const RegionFit& f,
+                                           const FittedRegion& was,
+                                           std::span<const std::uint32_t> known,
+                                           const BoundPlaneConfig& cfg, RegionState& state) {
     const RegionState& old = was.state;
-    if (old.cells.count.empty() || in.all.n > 2 * was.moments.n) return std::nullopt;
-    const RegionFit f = fit_plane(in);
     if (f.degenerate || f.normal.dot(old.normal) < std::cos(kExtendDeg * kDeg)) return std::nullopt;
     // The points that left (the members the last call saw of was's patches that are another
     // region's now) and those that joined (the members past those of was's patches, all of
@@ -342,6 +351,29 @@ std::optional<BoundPlane> extend_region(const RegionInput& in, const FittedRegio
     trace(plane, closed, old.anchor, old.u_axis, old.v_axis, cfg);
     state = std::move(next);
     return plane;
+}
+
+}  // namespace
+
+BoundPlane fit_region(const RegionInput& in, const BoundPlaneConfig& cfg, RegionState* state) {
+    return rasterised(in, fit_plane(in), cfg, state);
+}
+
+std::optional<BoundPlane> extend_region(const RegionInput& in, const FittedRegion& was,
+                                        std::span<const std::uint32_t> known,
+                                        const BoundPlaneConfig& cfg, RegionState& state) {
+    if (!extendable(in, was)) return std::nullopt;
+    return traced_on_counts(in, fit_plane(in), was, known, cfg, state);
+}
+
+BoundPlane region_plane(const RegionInput& in, const FittedRegion* was,
+                        std::span<const std::uint32_t> known, const BoundPlaneConfig& cfg,
+                        RegionState* state) {
+    const RegionFit f = fit_plane(in);
+    if (was && state && extendable(in, *was))
+        if (std::optional<BoundPlane> plane = traced_on_counts(in, f, *was, known, cfg, *state))
+            return std::move(*plane);
+    return rasterised(in, f, cfg, state);
 }
 
 }  // namespace surfgrow::detail

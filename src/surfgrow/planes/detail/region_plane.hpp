@@ -53,6 +53,12 @@ struct RegionInput {
                                                       const BoundPlaneConfig& cfg,
                                                       RegionState& state);
 
+/// The region's plane as compute_bound_planes takes it, its points fitted once: extend_region's
+/// where `was` is given (with a `state`) and it extends, else fit_region's.
+[[nodiscard]] BoundPlane region_plane(const RegionInput& region, const FittedRegion* was,
+                                      std::span<const std::uint32_t> known,
+                                      const BoundPlaneConfig& cfg, RegionState* state);
+
 /// The largest turn of a region's normal from the frame its boundary raster lies in, in
 /// degrees: the raster's cells then lie within 0.004 % of their size of those on the plane.
 inline constexpr double kExtendDeg = 0.5;
